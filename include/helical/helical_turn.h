@@ -1,0 +1,166 @@
+/*
+ * helical_turn.h - the helical-turn attitude controller (Premerlani & Hollands,
+ * "Helical Turns: Part 2, Controls"), in fixed point, exactly as
+ * docs/control-law.md specifies it.
+ *
+ * Frames (MatrixPilot): body X out the LEFT wing, Y forward, Z down. The DCM
+ * bottom row [X, Y, Z] is earth-down seen in the body frame: level [0, 0, 1],
+ * right bank phi gives X = -sin(phi), nose up theta gives Y = -sin(theta),
+ * inverted level Z = -1. Surfaces: aileron + rolls right, elevator + pitches
+ * the nose up, rudder + yaws the nose right.
+ *
+ * Use:
+ *   ht_params_t p = HT_PARAMS_DEFAULT;     // physical units, integers only
+ *   p.kp_aileron = Q16_FROM_REAL(3.0);     // folded at compile time
+ *   ht_controller_t ctl;
+ *   if (ht_init(&ctl, &p) != HT_OK) { ... ht_param_name(ht_init_bad_field) }
+ *   ht_input_t in = { ... };  ht_output_t out;
+ *   ht_step(&ctl, &in, &out);              // integer only, no state changed
+ *
+ * The step is a pure function of (controller, input): the law has no
+ * integral term, so nothing is carried between steps, and the controller
+ * struct is read-only after init. It allocates nothing, uses no float, no
+ * libm, no recursion and no global mutable state.
+ */
+#ifndef HELICAL_HELICAL_TURN_H
+#define HELICAL_HELICAL_TURN_H
+
+#include <stdint.h>
+
+#include "helical/q14.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Which pitch error the law uses. */
+typedef enum {
+    /* Eq. 10-11: pitch error in the earth frame, projected onto elevator and
+     * rudder. The default, and the source text's final design. */
+    HT_PITCH_EARTH_FRAME = 0,
+    /* Eq. A.13: the body-frame cross product of target and actual tilt (the
+     * source text's first method), kept for comparison in the SIL. */
+    HT_PITCH_TILT_CROSS = 1
+} ht_pitch_mode_t;
+
+/*
+ * Parameters, in physical units as integers, so that a board can hold them in
+ * flash without any float support. Gains are Q16 (Q16_FROM_REAL(3.0)).
+ * Ranges are checked by ht_init().
+ */
+typedef struct {
+    q16_t kp_aileron, kp_elevator, kp_rudder;    /* command per unit error, [0, 64] */
+    q16_t kff_aileron, kff_elevator, kff_rudder; /* command per rad/s at v_ref, [0, 64] */
+    q16_t kd_aileron, kd_elevator, kd_rudder;    /* command per rad/s, [0, 64] */
+    int32_t v_ref_cm_s;                          /* airspeed scaling reference, [v_min, 32767] */
+    int32_t v_min_cm_s;                          /* airspeed floor, [100, 32767] (1 m/s) */
+    uint8_t schedule;                            /* 1: kp, kd also scaled by v_ref / S */
+    q16_t max_tilt;                              /* limit on |turn_rate * S / g|, (0, 8] */
+    uint8_t pitch_mode;                          /* ht_pitch_mode_t */
+} ht_params_t;
+
+/* The defaults of docs/control-law.md. */
+#define HT_PARAMS_DEFAULT                                                                          \
+    {                                                                                              \
+        Q16_ONE, Q16_ONE, Q16_ONE, 0, 0, 0, 0, 0, 0, 1500, 500, 0, 4 * Q16_ONE,                    \
+            (uint8_t)HT_PITCH_EARTH_FRAME                                                          \
+    }
+
+/* ht_init results. */
+typedef enum {
+    HT_OK = 0,
+    HT_ERR_NULL = 1,     /* a NULL pointer */
+    HT_ERR_PARAM = 2     /* a parameter out of range: see *bad_field */
+} ht_status_t;
+
+/* Parameter identifiers, for error messages (ht_param_name). */
+typedef enum {
+    HT_P_NONE = 0,
+    HT_P_KP_AILERON, HT_P_KP_ELEVATOR, HT_P_KP_RUDDER,
+    HT_P_KFF_AILERON, HT_P_KFF_ELEVATOR, HT_P_KFF_RUDDER,
+    HT_P_KD_AILERON, HT_P_KD_ELEVATOR, HT_P_KD_RUDDER,
+    HT_P_V_REF, HT_P_V_MIN, HT_P_SCHEDULE, HT_P_MAX_TILT, HT_P_PITCH_MODE,
+    HT_P_COUNT
+} ht_param_id_t;
+
+/* The control-law.md name of a parameter ("kp_aileron", ...), or "" . */
+const char *ht_param_name(ht_param_id_t id);
+
+/* Per-axis gains in the core's order: index 0 = body X (elevator gains),
+ * 1 = body Y (aileron gains), 2 = body Z (rudder gains). */
+typedef struct {
+    q16_t kp[3];
+    q16_t kff[3];
+    q16_t kd[3];
+} ht_axis_gains_t;
+
+/*
+ * The controller: the parameters converted once into the core's formats.
+ * Read-only after ht_init; several steps (and threads) may share one.
+ */
+typedef struct {
+    ht_axis_gains_t gains;
+    int16_t v_ref_cm_s;
+    int16_t v_min_cm_s;
+    uint8_t schedule;
+    uint8_t pitch_mode;
+    q16_t max_tilt;
+    /* max_tilt * g in Q16 of (rad/s)*(cm/s): when the tilt limit clamps, the
+     * turn rate used is max_tilt_g_q16 / S_cm_s. */
+    int32_t max_tilt_g_q16;
+    uint8_t ready; /* 1 after a successful ht_init */
+} ht_controller_t;
+
+/*
+ * Check the parameters and fill the controller. On HT_ERR_PARAM the offending
+ * parameter is written to *bad_field (if bad_field is not NULL) and the
+ * controller is left unusable (ht_step on it gives zero surfaces).
+ */
+ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id_t *bad_field);
+
+/* One control step's inputs. */
+typedef struct {
+    q14_t x, y, z;             /* DCM bottom row, used as given (not renormalized) */
+    q11_t turn_rate_rad_s;     /* desired rate about earth vertical, + = right turn */
+    q16_t pitch_ratio;         /* desired vertical / horizontal airspeed, + = climb */
+    int16_t airspeed_cm_s;     /* measured airspeed; anything below v_min is floored */
+    q11_t gyro_rad_s[3];       /* measured body rates about X, Y, Z */
+    uint8_t inverted;          /* nonzero: fly inverted */
+} ht_input_t;
+
+/* Flags describing which branch of the law a step took. */
+enum {
+    HT_F_AIRSPEED_FLOORED = 1u << 0, /* airspeed < v_min: v_min used */
+    HT_F_TILT_LIMITED = 1u << 1,     /* |ratio| clamped to max_tilt */
+    HT_F_ROLL_BEYOND_90 = 1u << 2,   /* roll_dot <= 0: roll error = sign(cross) */
+    HT_F_PITCH_BEYOND_90 = 1u << 3,  /* pitch error saturated to +/-1 */
+    HT_F_FUSELAGE_VERTICAL = 1u << 4, /* X = Z = 0: projection direction defined as [-1, 0, 0] */
+    HT_F_SURFACE_SATURATED = 1u << 5 /* at least one surface clamped to +/-1 */
+};
+
+/* One step's outputs: every intermediate of the spec, for logging. */
+typedef struct {
+    q11_t turn_rate_used_rad_s; /* omega after the tilt limit */
+    q16_t tilt_ratio;           /* omega * S / g after the limit */
+    q14_t tilt_x, tilt_y, tilt_z;              /* target tilt (Eq. 5, 6, inverted) */
+    q11_t rate_x_rad_s, rate_y_rad_s, rate_z_rad_s; /* target body rate (Eq. 3) */
+    q14_t roll_dot, roll_cross, roll_error;    /* Eq. 8, 9 */
+    q14_t pitch_error;                         /* Eq. 10 (earth-frame mode); 0 in tilt-cross mode */
+    q14_t pitch_body_x, pitch_body_z;          /* Eq. 11 or Eq. A.13 */
+    q14_t aileron, elevator, rudder;           /* [-1, 1] */
+    uint8_t flags;                             /* HT_F_* */
+} ht_output_t;
+
+/*
+ * One control step. Integer only; ctl and in are not modified. Every input
+ * value is accepted: the results are defined for the whole int16/int32 range
+ * (saturating where the header of each field says so). A NULL argument or an
+ * uninitialised controller writes zero surfaces (when out is not NULL).
+ */
+void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HELICAL_HELICAL_TURN_H */

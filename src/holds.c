@@ -1,0 +1,156 @@
+/*
+ * holds.c - altitude hold and airspeed hold, the outer loops around the
+ * helical-turn law (see holds.h). Integer only: no float, no libm, no
+ * allocation, no recursion, no global mutable state.
+ */
+#include "helical/holds.h"
+
+#include <stddef.h>
+
+#define HOLD_GAIN_MAX_Q16   (64L * 65536L)
+#define HOLD_RATIO_MAX_Q16  (4L * 65536L)
+#define HOLD_ERROR_MAX_CM   1000000L
+#define HOLD_CLIMB_MAX_CM_S 100000L
+#define HOLD_RATE_MAX_HZ    1000u
+
+/* a / b rounded to nearest, ties away from zero; b in [1, 1000], so the
+ * remainder test cannot overflow. */
+static int32_t div_round_s32(int32_t a, int32_t b)
+{
+    int32_t q = a / b;
+    int32_t r = a % b;
+    int32_t r_abs = (r < 0) ? -r : r;
+    if (2 * r_abs >= b) {
+        q += (a < 0) ? -1 : 1;
+    }
+    return q;
+}
+
+/* A length or speed in cm (or cm/s), already bounded to +-1e6, as metres
+ * (or m/s) in Q8: round(v * 256 / 100) = round(v * 64 / 25). */
+static int32_t cm_to_m_q8(int32_t v_cm)
+{
+    return div_round_s32(v_cm * 64, 25);
+}
+
+static int gain_ok(q16_t g)
+{
+    return g >= 0 && g <= HOLD_GAIN_MAX_Q16;
+}
+
+/* --- altitude hold ------------------------------------------------------- */
+
+ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p)
+{
+    if (p == NULL) {
+        return HT_HOLD_ERR_NULL;
+    }
+    if (!gain_ok(p->kp_pitch_per_m) || !gain_ok(p->ki_pitch_per_m_s) ||
+        !gain_ok(p->kd_pitch_per_m_s) || p->max_pitch <= 0 || p->max_pitch > HOLD_RATIO_MAX_Q16 ||
+        p->max_integral_pitch < 0 || p->max_integral_pitch > HOLD_RATIO_MAX_Q16 ||
+        p->max_error_cm < 100 || p->max_error_cm > HOLD_ERROR_MAX_CM || p->rate_hz < 1u ||
+        p->rate_hz > HOLD_RATE_MAX_HZ) {
+        return HT_HOLD_ERR_PARAM;
+    }
+    return HT_HOLD_OK;
+}
+
+void ht_alt_hold_reset(ht_alt_hold_state_t *s)
+{
+    if (s != NULL) {
+        s->integral_q20[0] = 0;
+        s->integral_q20[1] = 0;
+    }
+}
+
+q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
+                       int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted)
+{
+    if (s == NULL || ht_alt_hold_check(p) != HT_HOLD_OK) {
+        return 0;
+    }
+    const int idx = (inverted != 0u) ? 1 : 0;
+    const int32_t err_cm =
+        q_clamp32(q_sub_sat32(target_cm, altitude_cm), -p->max_error_cm, p->max_error_cm);
+    const int32_t err_m_q8 = cm_to_m_q8(err_cm);
+    const int32_t climb_m_q8 =
+        cm_to_m_q8(q_clamp32(climb_cm_s, -HOLD_CLIMB_MAX_CM_S, HOLD_CLIMB_MAX_CM_S));
+
+    /* Q16 * Q8 >> 8 = Q16 */
+    const int32_t p_term_q16 = q_mul32(p->kp_pitch_per_m, err_m_q8, 8);
+    const int32_t d_term_q16 = q_mul32(p->kd_pitch_per_m_s, climb_m_q8, 8);
+    /* Q16 * Q8 >> 4 = Q20, per step */
+    const int32_t inc_q20 =
+        div_round_s32(q_mul32(p->ki_pitch_per_m_s, err_m_q8, 4), (int32_t)p->rate_hz);
+
+    const int32_t max_i_q20 = p->max_integral_pitch * 16; /* <= 4 * 2^20 */
+    int32_t integral_q20 = s->integral_q20[idx];
+
+    /* Output with the old integral decides whether integrating is allowed. */
+    const int32_t pd_q16 = q_sub_sat32(p_term_q16, d_term_q16);
+    const int32_t before_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
+    const int saturated_high = before_q16 >= p->max_pitch;
+    const int saturated_low = before_q16 <= -p->max_pitch;
+    if (!((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
+        integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
+    }
+    s->integral_q20[idx] = integral_q20;
+
+    const int32_t out_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
+    return q_clamp32(out_q16, -p->max_pitch, p->max_pitch);
+}
+
+/* --- airspeed hold ------------------------------------------------------- */
+
+ht_hold_status_t ht_speed_hold_check(const ht_speed_hold_params_t *p)
+{
+    if (p == NULL) {
+        return HT_HOLD_ERR_NULL;
+    }
+    if (p->throttle_trim < 0 || p->throttle_trim > Q14_ONE || p->throttle_min < 0 ||
+        p->throttle_min > Q14_ONE || p->throttle_max < p->throttle_min ||
+        p->throttle_max > Q14_ONE || !gain_ok(p->kp_throttle_per_m_s) ||
+        !gain_ok(p->ki_throttle_per_m) || !gain_ok(p->kff_throttle_per_pitch) ||
+        p->max_integral_throttle < 0 || p->max_integral_throttle > Q14_ONE || p->rate_hz < 1u ||
+        p->rate_hz > HOLD_RATE_MAX_HZ) {
+        return HT_HOLD_ERR_PARAM;
+    }
+    return HT_HOLD_OK;
+}
+
+void ht_speed_hold_reset(ht_speed_hold_state_t *s)
+{
+    if (s != NULL) {
+        s->integral_q20 = 0;
+    }
+}
+
+q14_t ht_speed_hold_step(const ht_speed_hold_params_t *p, ht_speed_hold_state_t *s,
+                         int16_t target_cm_s, int16_t airspeed_cm_s, q16_t pitch_q16)
+{
+    if (s == NULL || ht_speed_hold_check(p) != HT_HOLD_OK) {
+        return 0;
+    }
+    const int32_t err_m_q8 = cm_to_m_q8((int32_t)target_cm_s - (int32_t)airspeed_cm_s);
+    const int32_t p_term_q16 = q_mul32(p->kp_throttle_per_m_s, err_m_q8, 8);
+    const int32_t ff_term_q16 = q_mul32(p->kff_throttle_per_pitch, pitch_q16, 16);
+    const int32_t inc_q20 =
+        div_round_s32(q_mul32(p->ki_throttle_per_m, err_m_q8, 4), (int32_t)p->rate_hz);
+
+    const int32_t lo_q16 = (int32_t)p->throttle_min * 4;
+    const int32_t hi_q16 = (int32_t)p->throttle_max * 4;
+    const int32_t max_i_q20 = (int32_t)p->max_integral_throttle * 64;
+    const int32_t base_q16 =
+        q_add_sat32(q_add_sat32((int32_t)p->throttle_trim * 4, ff_term_q16), p_term_q16);
+
+    int32_t integral_q20 = s->integral_q20;
+    const int32_t before_q16 = q_add_sat32(base_q16, q_rshift_round(integral_q20, 4));
+    if (!((before_q16 >= hi_q16 && inc_q20 > 0) || (before_q16 <= lo_q16 && inc_q20 < 0))) {
+        integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
+    }
+    s->integral_q20 = integral_q20;
+
+    const int32_t out_q16 =
+        q_clamp32(q_add_sat32(base_q16, q_rshift_round(integral_q20, 4)), lo_q16, hi_q16);
+    return (q14_t)q_clamp32(q_rshift_round(out_q16, 2), p->throttle_min, p->throttle_max);
+}

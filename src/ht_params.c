@@ -1,0 +1,104 @@
+/*
+ * ht_params.c - parameter checking and the one-time conversion of the
+ * physical-unit parameters into the controller's formats (ht_init).
+ */
+#include <stddef.h>
+
+#include "helical/helical_turn.h"
+
+/* Gains above 64 per unit error (or per rad/s) would saturate the surfaces on
+ * sensor noise alone; the limit also keeps gain * v_ref / v_min in int32 Q16. */
+#define HT_GAIN_MAX_Q16 (64 * Q16_ONE)
+/* A floor below 1 m/s makes v_ref / S meaningless (and unbounded). */
+#define HT_V_MIN_LOWEST_CM_S 100
+/* |ratio| <= 8 is 82.9 degrees of bank; beyond that the law's target is
+ * nearly a knife edge and max_tilt * g stays well inside its format. */
+#define HT_MAX_TILT_LIMIT_Q16 (8 * Q16_ONE)
+/* 980.665 (g in cm/s^2) in Q20: max_tilt (Q16) * g -> Q16 of (rad/s)*(cm/s). */
+#define HT_G_CM_S2_Q20 1028301783L
+
+static const char *const param_names[HT_P_COUNT] = {
+    "",           "kp_aileron",   "kp_elevator", "kp_rudder", "kff_aileron",
+    "kff_elevator", "kff_rudder", "kd_aileron",  "kd_elevator", "kd_rudder",
+    "v_ref",      "v_min",        "schedule",    "max_tilt",  "pitch_mode"};
+
+const char *ht_param_name(ht_param_id_t id)
+{
+    if ((int)id <= 0 || (int)id >= (int)HT_P_COUNT) {
+        return "";
+    }
+    return param_names[id];
+}
+
+static int gain_ok(q16_t g)
+{
+    return g >= 0 && g <= HT_GAIN_MAX_Q16;
+}
+
+/* The first parameter out of range, or HT_P_NONE. */
+static ht_param_id_t first_bad_param(const ht_params_t *p)
+{
+    const q16_t gains[9] = {p->kp_aileron,  p->kp_elevator,  p->kp_rudder,
+                            p->kff_aileron, p->kff_elevator, p->kff_rudder,
+                            p->kd_aileron,  p->kd_elevator,  p->kd_rudder};
+    for (int i = 0; i < 9; i++) {
+        if (!gain_ok(gains[i])) {
+            return (ht_param_id_t)(HT_P_KP_AILERON + i);
+        }
+    }
+    if (p->v_min_cm_s < HT_V_MIN_LOWEST_CM_S || p->v_min_cm_s > INT16_MAX) {
+        return HT_P_V_MIN;
+    }
+    if (p->v_ref_cm_s < p->v_min_cm_s || p->v_ref_cm_s > INT16_MAX) {
+        return HT_P_V_REF;
+    }
+    if (p->schedule > 1u) {
+        return HT_P_SCHEDULE;
+    }
+    if (p->max_tilt <= 0 || p->max_tilt > HT_MAX_TILT_LIMIT_Q16) {
+        return HT_P_MAX_TILT;
+    }
+    if (p->pitch_mode != (uint8_t)HT_PITCH_EARTH_FRAME &&
+        p->pitch_mode != (uint8_t)HT_PITCH_TILT_CROSS) {
+        return HT_P_PITCH_MODE;
+    }
+    return HT_P_NONE;
+}
+
+ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id_t *bad_field)
+{
+    if (bad_field != NULL) {
+        *bad_field = HT_P_NONE;
+    }
+    if (ctl == NULL || params == NULL) {
+        return HT_ERR_NULL;
+    }
+    ht_controller_t c = {0};
+    *ctl = c; /* unusable until every check has passed */
+    ht_param_id_t bad = first_bad_param(params);
+    if (bad != HT_P_NONE) {
+        if (bad_field != NULL) {
+            *bad_field = bad;
+        }
+        return HT_ERR_PARAM;
+    }
+    /* Body axis order X, Y, Z = elevator, aileron, rudder gains. */
+    c.gains.kp[0] = params->kp_elevator;
+    c.gains.kp[1] = params->kp_aileron;
+    c.gains.kp[2] = params->kp_rudder;
+    c.gains.kff[0] = params->kff_elevator;
+    c.gains.kff[1] = params->kff_aileron;
+    c.gains.kff[2] = params->kff_rudder;
+    c.gains.kd[0] = params->kd_elevator;
+    c.gains.kd[1] = params->kd_aileron;
+    c.gains.kd[2] = params->kd_rudder;
+    c.v_ref_cm_s = (int16_t)params->v_ref_cm_s;
+    c.v_min_cm_s = (int16_t)params->v_min_cm_s;
+    c.schedule = params->schedule;
+    c.pitch_mode = params->pitch_mode;
+    c.max_tilt = params->max_tilt;
+    c.max_tilt_g_q16 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 20);
+    c.ready = 1u;
+    *ctl = c;
+    return HT_OK;
+}

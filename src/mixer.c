@@ -1,0 +1,135 @@
+/*
+ * mixer.c - airframe mixes and the RC pass-through (see mixer.h).
+ * All arithmetic is done in int32_t explicitly: the library also builds for
+ * 16-bit-int targets (XC16), where int16 + int16 would overflow an int.
+ */
+#include "helical/mixer.h"
+
+#include <stddef.h>
+
+static q14_t clamp_q14(int32_t x, int32_t lo, int32_t hi)
+{
+    if (x < lo) {
+        return (q14_t)lo;
+    }
+    if (x > hi) {
+        return (q14_t)hi;
+    }
+    return (q14_t)x;
+}
+
+static q14_t surface(int32_t x)
+{
+    return clamp_q14(x, -(int32_t)Q14_ONE, (int32_t)Q14_ONE);
+}
+
+q14_t os_mix(const os_command_t *cmd, uint8_t function)
+{
+    if (cmd == NULL) {
+        return 0;
+    }
+    /* Clamp each input first, so that an out-of-range input cannot push a
+     * sum further than a full-scale one would. */
+    const int32_t ail = surface(cmd->aileron);
+    const int32_t ele = surface(cmd->elevator);
+    const int32_t rud = surface(cmd->rudder);
+
+    switch (function) {
+    case OS_FN_AILERON:
+    case OS_FN_AILERON2:
+        return (q14_t)ail;
+    case OS_FN_ELEVATOR:
+        return (q14_t)ele;
+    case OS_FN_RUDDER:
+        return (q14_t)rud;
+    case OS_FN_THROTTLE:
+        return clamp_q14(cmd->throttle, 0, (int32_t)Q14_ONE);
+    case OS_FN_VTAIL_LEFT:
+        return surface(ele + rud);
+    case OS_FN_VTAIL_RIGHT:
+        return surface(ele - rud);
+    case OS_FN_ELEVON_LEFT:
+        return surface(ele - ail);
+    case OS_FN_ELEVON_RIGHT:
+        return surface(ele + ail);
+    default:
+        return 0; /* OS_FN_NONE and unknown functions: neutral */
+    }
+}
+
+os_status_t os_rc_cal_check(const os_rc_cal_t *cal)
+{
+    if (cal == NULL) {
+        return OS_ERR_NULL;
+    }
+    if (cal->centre_us < OS_RC_VALID_MIN_US || cal->centre_us > OS_RC_VALID_MAX_US ||
+        cal->travel_us < OS_RC_TRAVEL_MIN_US || cal->travel_us > OS_RC_TRAVEL_MAX_US) {
+        return OS_ERR_CONFIG;
+    }
+    return OS_OK;
+}
+
+os_status_t os_rc_to_q14(const os_rc_cal_t *cal, uint16_t pulse_us, q14_t *out)
+{
+    if (out == NULL) {
+        return OS_ERR_NULL;
+    }
+    *out = 0;
+    const os_status_t st = os_rc_cal_check(cal);
+    if (st != OS_OK) {
+        return st;
+    }
+    if (pulse_us < OS_RC_VALID_MIN_US || pulse_us > OS_RC_VALID_MAX_US) {
+        return OS_ERR_RANGE;
+    }
+    int32_t d = (int32_t)pulse_us - (int32_t)cal->centre_us;
+    if (cal->reversed) {
+        d = -d;
+    }
+    /* |d| <= 1400 and travel >= 100: the quotient is below 2^18 and the
+     * numerator below 2^25, so uint32 holds it. Round half away from zero. */
+    const uint32_t mag = (d < 0) ? (uint32_t)-d : (uint32_t)d;
+    const uint32_t travel = cal->travel_us;
+    const uint32_t q = (mag * (uint32_t)Q14_ONE + travel / 2u) / travel;
+    const int32_t v = (d < 0) ? -(int32_t)q : (int32_t)q;
+    *out = clamp_q14(v, cal->unipolar ? 0 : -(int32_t)Q14_ONE, (int32_t)Q14_ONE);
+    return OS_OK;
+}
+
+static os_status_t rc_axis(const os_rc_cal_t *cal, const uint16_t rc_us[], uint8_t rc_count,
+                           q14_t *out)
+{
+    if (cal->input >= rc_count) {
+        *out = 0;
+        return OS_ERR_CONFIG;
+    }
+    return os_rc_to_q14(cal, rc_us[cal->input], out);
+}
+
+os_status_t os_rc_command(const os_rc_map_t *map, const uint16_t rc_us[], uint8_t rc_count,
+                          os_command_t *out)
+{
+    if (out == NULL) {
+        return OS_ERR_NULL;
+    }
+    const os_command_t neutral = {0, 0, 0, 0};
+    *out = neutral;
+    if (map == NULL || rc_us == NULL) {
+        return OS_ERR_NULL;
+    }
+    os_command_t c;
+    os_status_t st = rc_axis(&map->aileron, rc_us, rc_count, &c.aileron);
+    if (st == OS_OK) {
+        st = rc_axis(&map->elevator, rc_us, rc_count, &c.elevator);
+    }
+    if (st == OS_OK) {
+        st = rc_axis(&map->rudder, rc_us, rc_count, &c.rudder);
+    }
+    if (st == OS_OK) {
+        st = rc_axis(&map->throttle, rc_us, rc_count, &c.throttle);
+    }
+    if (st == OS_OK) {
+        *out = c;
+    }
+    return st;
+}

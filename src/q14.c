@@ -1,0 +1,389 @@
+/*
+ * q14.c - the portable fixed-point primitives (see q14.h for ranges and
+ * rounding). Integer only; a division by a variable only in q14_div and
+ * the unit-vector functions (one each).
+ */
+#include "helical/q14.h"
+
+#include "q14_target.h"
+
+/* The library's rounding shifts rely on arithmetic >> of negative values. */
+_Static_assert((-1 >> 1) == -1, "signed right shift must be arithmetic");
+_Static_assert((-3L >> 1) == -2L, "signed right shift must be arithmetic");
+
+int16_t q_sat16(int32_t x)
+{
+    return Q_TARGET_SAT16(x);
+}
+
+int32_t q_clamp32(int32_t x, int32_t lo, int32_t hi)
+{
+    if (x < lo) {
+        return lo;
+    }
+    if (x > hi) {
+        return hi;
+    }
+    return x;
+}
+
+int16_t q14_add_sat(int16_t a, int16_t b)
+{
+    return q_sat16((int32_t)a + (int32_t)b);
+}
+
+int16_t q14_sub_sat(int16_t a, int16_t b)
+{
+    return q_sat16((int32_t)a - (int32_t)b);
+}
+
+int32_t q_add_sat32(int32_t a, int32_t b)
+{
+    if (b > 0 && a > INT32_MAX - b) {
+        return INT32_MAX;
+    }
+    if (b < 0 && a < INT32_MIN - b) {
+        return INT32_MIN;
+    }
+    return a + b;
+}
+
+int32_t q_sub_sat32(int32_t a, int32_t b)
+{
+    if (b < 0 && a > INT32_MAX + b) {
+        return INT32_MAX;
+    }
+    if (b > 0 && a < INT32_MIN + b) {
+        return INT32_MIN;
+    }
+    return a - b;
+}
+
+int32_t q_rshift_round(int32_t x, unsigned shift)
+{
+    /* floor(x / 2^s) plus the first dropped bit: round half up, no overflow. */
+    return (x >> shift) + ((x >> (shift - 1u)) & 1);
+}
+
+q14_t q14_mul(q14_t a, q14_t b)
+{
+    int32_t p = Q_TARGET_MUL16(a, b);
+    return q_sat16((p + (1 << 13)) >> 14);
+}
+
+/* ---- the wide multiply ---------------------------------------------------- */
+
+#if Q_TARGET_HAS_MUL64
+int32_t q_mul32(int32_t a, int32_t b, unsigned shift)
+{
+    /* Cores with a 32x32->64 multiplier (SMULL, x86-64 IMUL): same bits as
+     * the portable version below, proven by test_q14_wide. */
+    int64_t p = (int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u));
+    p >>= shift;
+    if (p > INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (p < INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)p;
+}
+#else
+int32_t q_mul32(int32_t a, int32_t b, unsigned shift)
+{
+    return q_mul32_portable(a, b, shift);
+}
+#endif
+
+/* 64-bit unsigned value as two 32-bit halves. */
+typedef struct {
+    uint32_t hi, lo;
+} u64pair_t;
+
+static u64pair_t umul32(uint32_t a, uint32_t b)
+{
+    uint32_t a0 = a & 0xFFFFu, a1 = a >> 16;
+    uint32_t b0 = b & 0xFFFFu, b1 = b >> 16;
+    uint32_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint32_t mid = p01 + p10;
+    uint32_t mid_carry = (mid < p01) ? 0x10000u : 0u;
+    u64pair_t r;
+    r.lo = p00 + (mid << 16);
+    r.hi = p11 + (mid >> 16) + mid_carry + ((r.lo < p00) ? 1u : 0u);
+    return r;
+}
+
+static u64pair_t u64_add(u64pair_t x, uint32_t hi, uint32_t lo)
+{
+    u64pair_t r;
+    r.lo = x.lo + lo;
+    r.hi = x.hi + hi + ((r.lo < x.lo) ? 1u : 0u);
+    return r;
+}
+
+/* x >> s for s in [1, 62]. */
+static u64pair_t u64_shr(u64pair_t x, unsigned s)
+{
+    u64pair_t r;
+    if (s >= 32u) {
+        r.lo = (s == 32u) ? x.hi : (x.hi >> (s - 32u));
+        r.hi = 0u;
+    } else {
+        r.lo = (x.lo >> s) | (x.hi << (32u - s));
+        r.hi = x.hi >> s;
+    }
+    return r;
+}
+
+/* 2^k as a 64-bit pair, k in [0, 62]. */
+static u64pair_t u64_pow2(unsigned k)
+{
+    u64pair_t r;
+    r.hi = (k >= 32u) ? (1u << (k - 32u)) : 0u;
+    r.lo = (k >= 32u) ? 0u : (1u << k);
+    return r;
+}
+
+int32_t q_mul32_portable(int32_t a, int32_t b, unsigned shift)
+{
+    int negative = (a < 0) != (b < 0);
+    uint32_t ua = (a < 0) ? (0u - (uint32_t)a) : (uint32_t)a;
+    uint32_t ub = (b < 0) ? (0u - (uint32_t)b) : (uint32_t)b;
+    u64pair_t p = umul32(ua, ub);
+    if (ua == 0u || ub == 0u) {
+        negative = 0;
+    }
+    /* Ties toward +inf: a positive product adds half, a negative product
+     * adds half less one before the magnitude is floored. */
+    u64pair_t half = u64_pow2(shift - 1u);
+    if (negative) {
+        half = (half.lo == 0u) ? (u64pair_t){half.hi - 1u, 0xFFFFFFFFu}
+                               : (u64pair_t){half.hi, half.lo - 1u};
+    }
+    p = u64_add(p, half.hi, half.lo);
+    p = u64_shr(p, shift);
+    if (negative) {
+        if (p.hi != 0u || p.lo > 0x80000000u) {
+            return INT32_MIN;
+        }
+        return (int32_t)(0u - p.lo);
+    }
+    if (p.hi != 0u || p.lo > (uint32_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    return (int32_t)p.lo;
+}
+
+/* ---- division and square roots ------------------------------------------ */
+
+q14_t q14_div(q14_t num, q14_t den)
+{
+    if (den == 0) {
+        return (num >= 0) ? INT16_MAX : INT16_MIN;
+    }
+    int32_t n = (int32_t)num * 16384;
+    int32_t d = den;
+    int32_t an = (n < 0) ? -n : n;
+    int32_t ad = (d < 0) ? -d : d;
+    int32_t q = (an + ad / 2) / ad; /* ties away from zero */
+    return q_sat16(((n < 0) != (d < 0)) ? -q : q);
+}
+
+q14_t q14_recip(q14_t x)
+{
+    return q14_div(Q14_ONE, x);
+}
+
+uint16_t q_isqrt32(uint32_t x)
+{
+    /* Digit-by-digit (base 4) square root: 16 iterations, no division. */
+    uint32_t root = 0u;
+    uint32_t bit = 1uL << 30;
+    while (bit > x) {
+        bit >>= 2;
+    }
+    while (bit != 0u) {
+        if (x >= root + bit) {
+            x -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (uint16_t)root;
+}
+
+uint32_t q_isqrt32_round(uint32_t x)
+{
+    uint32_t s = q_isqrt32(x);
+    /* round up when x >= s^2 + s + 1, i.e. x - s^2 > s: (s + 1/2)^2 = s^2 + s + 1/4 */
+    return (x - s * s > s) ? s + 1u : s;
+}
+
+q14_t q14_sqrt(q14_t x)
+{
+    if (x <= 0) {
+        return 0;
+    }
+    return (q14_t)q_isqrt32_round((uint32_t)x << 14);
+}
+
+/* ---- vectors -------------------------------------------------------------- */
+
+q14_t q14_dot3(const q14_t a[3], const q14_t b[3])
+{
+    /* Each product is at most 2^30 in magnitude; three fit only as a
+     * saturating sum. */
+    int32_t s = (int32_t)a[0] * b[0];
+    s = q_add_sat32(s, (int32_t)a[1] * b[1]);
+    s = q_add_sat32(s, (int32_t)a[2] * b[2]);
+    return q_sat16(q_rshift_round(s, 14));
+}
+
+static q14_t cross_term(q14_t a, q14_t b, q14_t c, q14_t d)
+{
+    /* a*b - c*d: each product is in [-2^30, 2^30], so the difference fits. */
+    int32_t s = (int32_t)a * b - (int32_t)c * d;
+    return q_sat16(q_rshift_round(s, 14));
+}
+
+void q14_cross3(const q14_t a[3], const q14_t b[3], q14_t out[3])
+{
+    q14_t r0 = cross_term(a[1], b[2], a[2], b[1]);
+    q14_t r1 = cross_term(a[2], b[0], a[0], b[2]);
+    q14_t r2 = cross_term(a[0], b[1], a[1], b[0]);
+    out[0] = r0;
+    out[1] = r1;
+    out[2] = r2;
+}
+
+/*
+ * Unit vector of n int32 components (n = 2 or 3), in Q28.
+ * The components are block-scaled so that the largest magnitude c lies in
+ * [1/2, 1] as Q30 (no bits are lost unless an input exceeds 2^30); the sum of
+ * squares S is formed in Q28 with the exact wide multiply; 1/sqrt(S) starts
+ * from the 16-bit integer square root and one Newton step
+ * y <- y * (3 - S*y^2) / 2 takes its relative error from 2^-15 to about
+ * 2^-29; each component is then c_i * y. One division in all.
+ */
+static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
+{
+    uint32_t m[3];
+    uint32_t big = 0u;
+    for (unsigned i = 0; i < n; i++) {
+        m[i] = (v[i] < 0) ? (0u - (uint32_t)v[i]) : (uint32_t)v[i];
+        if (m[i] > big) {
+            big = m[i];
+        }
+    }
+    if (big == 0u) {
+        for (unsigned i = 0; i < n; i++) {
+            out[i] = 0;
+        }
+        return 0;
+    }
+    unsigned down = 0u;
+    while ((big >> down) >= 0x40000000u) {
+        down++;
+    }
+    unsigned up = 0u;
+    while ((big << up) < 0x20000000u) {
+        up++;
+    }
+    int32_t sum_q28 = 0;
+    for (unsigned i = 0; i < n; i++) {
+        if (down > 0u) {
+            m[i] = (m[i] >> down) + ((m[i] >> (down - 1u)) & 1u);
+        }
+        m[i] <<= up;
+        sum_q28 += q_mul32((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
+    }
+    /* sqrt(S) * 2^15 from S in Q30, then y0 = 2^32 / that = 1/sqrt(S) in Q17. */
+    uint32_t root_q15 = q_isqrt32_round((uint32_t)sum_q28 << 2);
+    int32_t y_q28 = (int32_t)((0xFFFFFFFFu / root_q15) << 11);
+    int32_t sy2_q28 = q_mul32(sum_q28, q_mul32(y_q28, y_q28, 28u), 28u);
+    y_q28 = q_mul32(y_q28, ((3 << 28) - sy2_q28) / 2, 28u);
+    for (unsigned i = 0; i < n; i++) {
+        int32_t u = q_mul32((int32_t)m[i], y_q28, 30u);
+        out[i] = (v[i] < 0) ? -u : u;
+    }
+    return 1;
+}
+
+int q_unit2_q28(int32_t a, int32_t b, int32_t *ua, int32_t *ub)
+{
+    int32_t v[2] = {a, b};
+    int32_t u[2];
+    int ok = unit_n_q28(v, 2u, u);
+    *ua = u[0];
+    *ub = u[1];
+    return ok;
+}
+
+int q_unit3_q28(const int32_t v[3], int32_t out[3])
+{
+    return unit_n_q28(v, 3u, out);
+}
+
+static int unit_n(const int32_t *v, unsigned n, q16_t *out)
+{
+    int32_t u[3];
+    int ok = unit_n_q28(v, n, u);
+    for (unsigned i = 0; i < n; i++) {
+        out[i] = q_rshift_round(u[i], 12u);
+    }
+    return ok;
+}
+
+int q_unit2_q16(int32_t a, int32_t b, q16_t *ua, q16_t *ub)
+{
+    int32_t v[2] = {a, b};
+    q16_t u[2];
+    int ok = unit_n(v, 2u, u);
+    *ua = u[0];
+    *ub = u[1];
+    return ok;
+}
+
+int q_unit3_q16(const int32_t v[3], q16_t out[3])
+{
+    return unit_n(v, 3u, out);
+}
+
+q16_t q14_norm2_q16(q14_t a, q14_t b)
+{
+    /* a^2 + b^2 <= 2^31 in Q28; scaled by 4^k to Q(28+2k) while it fits, the
+     * root is Q(14+k), shifted up to Q16. */
+    uint32_t s = (uint32_t)((int32_t)a * a) + (uint32_t)((int32_t)b * b);
+    unsigned k = 0u;
+    while (k < 2u && s < 0x40000000u) {
+        s <<= 2;
+        k++;
+    }
+    return (q16_t)(q_isqrt32_round(s) << (2u - k));
+}
+
+static int normalize_q14(q14_t *v, unsigned n)
+{
+    int32_t w[3];
+    int32_t u[3];
+    for (unsigned i = 0; i < n; i++) {
+        w[i] = v[i];
+    }
+    int ok = unit_n_q28(w, n, u);
+    for (unsigned i = 0; i < n; i++) {
+        v[i] = q_sat16(q_rshift_round(u[i], 14u));
+    }
+    return ok;
+}
+
+int q14_normalize2(q14_t v[2])
+{
+    return normalize_q14(v, 2u);
+}
+
+int q14_normalize3(q14_t v[3])
+{
+    return normalize_q14(v, 3u);
+}

@@ -1,0 +1,47 @@
+/*
+ * q14_target.h - compile-time choice of the fastest primitive each core has.
+ *
+ * The portable C expression is the reference; an alternative is used only
+ * where it gives the same bits by definition (a 16x16->32 multiply, a
+ * saturation to 16 bits, a 32x32->64 multiply). Build with
+ * -DHT_PORTABLE_ONLY=1 to force the portable code everywhere (the host tests
+ * compare both).
+ */
+#ifndef HELICAL_Q14_TARGET_H
+#define HELICAL_Q14_TARGET_H
+
+#include <stdint.h>
+
+#ifndef HT_PORTABLE_ONLY
+#define HT_PORTABLE_ONLY 0
+#endif
+
+#if !HT_PORTABLE_ONLY && defined(__XC16__)
+/* dsPIC30/33: the DSP engine's signed 16x16 multiply (MUL.SS). */
+#define Q_TARGET_MUL16(a, b) ((int32_t)__builtin_mulss((a), (b)))
+#elif !HT_PORTABLE_ONLY && defined(__ARM_FEATURE_DSP)
+/* Cortex-M4/M7: SMULBB multiplies the bottom halfwords. */
+#include <arm_acle.h>
+#define Q_TARGET_MUL16(a, b) ((int32_t)__smulbb((uint32_t)(uint16_t)(a), (uint32_t)(uint16_t)(b)))
+#else
+#define Q_TARGET_MUL16(a, b) ((int32_t)(a) * (int32_t)(b))
+#endif
+
+#if !HT_PORTABLE_ONLY && defined(__ARM_FEATURE_SAT)
+/* Cortex-M3/M4: SSAT #16. */
+#include <arm_acle.h>
+#define Q_TARGET_SAT16(x) ((int16_t)__ssat((x), 16))
+#else
+#define Q_TARGET_SAT16(x)                                                                          \
+    ((int16_t)((x) > INT16_MAX ? INT16_MAX : ((x) < INT16_MIN ? INT16_MIN : (x))))
+#endif
+
+/* A 32x32->64 multiply in hardware: x86-64, AArch64, ARMv7-M (SMULL). */
+#if !HT_PORTABLE_ONLY && (defined(__x86_64__) || defined(__aarch64__) ||                           \
+                          defined(__ARM_ARCH_7M__) || defined(__ARM_ARCH_7EM__))
+#define Q_TARGET_HAS_MUL64 1
+#else
+#define Q_TARGET_HAS_MUL64 0
+#endif
+
+#endif /* HELICAL_Q14_TARGET_H */
