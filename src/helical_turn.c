@@ -14,7 +14,7 @@
 
 /* 2^35 * 32 / 980.665: (Q11 rad/s * cm/s) -> Q16 ratio, shift 35. */
 #define RATIO_FROM_OMEGA_S 1121189833L
-#define RATIO_SHIFT 35u
+#define RATIO_SHIFT        35u
 
 /* round(num * 2^extra / den) for num >= 0, den > 0, num < 2^31, extra <= 4,
  * by long division so that num * 2^extra need not fit 32 bits. */
@@ -94,8 +94,8 @@ static int32_t cross_q28(q14_t a, int32_t b, q14_t c, int32_t d)
 }
 
 /* Roll error (Eq. 8, 9). */
-static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *dot,
-                          int32_t *cross, uint8_t *flags)
+static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *dot, int32_t *cross,
+                          uint8_t *flags)
 {
     *dot = q_add_sat32(q_mul32(in->x, tilt[0], 14u), q_mul32(in->z, tilt[2], 14u));
     *cross = cross_q28(in->z, tilt[0], in->x, tilt[2]);

@@ -18,9 +18,9 @@
 #define HT_G_CM_S2_Q20 1028301783L
 
 static const char *const param_names[HT_P_COUNT] = {
-    "",           "kp_aileron",   "kp_elevator", "kp_rudder", "kff_aileron",
-    "kff_elevator", "kff_rudder", "kd_aileron",  "kd_elevator", "kd_rudder",
-    "v_ref",      "v_min",        "schedule",    "max_tilt",  "pitch_mode"};
+    "",           "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator",
+    "kff_rudder", "kd_aileron", "kd_elevator", "kd_rudder", "v_ref",       "v_min",
+    "schedule",   "max_tilt",   "pitch_mode"};
 
 const char *ht_param_name(ht_param_id_t id)
 {

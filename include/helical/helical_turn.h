@@ -69,17 +69,27 @@ typedef struct {
 /* ht_init results. */
 typedef enum {
     HT_OK = 0,
-    HT_ERR_NULL = 1,     /* a NULL pointer */
-    HT_ERR_PARAM = 2     /* a parameter out of range: see *bad_field */
+    HT_ERR_NULL = 1, /* a NULL pointer */
+    HT_ERR_PARAM = 2 /* a parameter out of range: see *bad_field */
 } ht_status_t;
 
 /* Parameter identifiers, for error messages (ht_param_name). */
 typedef enum {
     HT_P_NONE = 0,
-    HT_P_KP_AILERON, HT_P_KP_ELEVATOR, HT_P_KP_RUDDER,
-    HT_P_KFF_AILERON, HT_P_KFF_ELEVATOR, HT_P_KFF_RUDDER,
-    HT_P_KD_AILERON, HT_P_KD_ELEVATOR, HT_P_KD_RUDDER,
-    HT_P_V_REF, HT_P_V_MIN, HT_P_SCHEDULE, HT_P_MAX_TILT, HT_P_PITCH_MODE,
+    HT_P_KP_AILERON,
+    HT_P_KP_ELEVATOR,
+    HT_P_KP_RUDDER,
+    HT_P_KFF_AILERON,
+    HT_P_KFF_ELEVATOR,
+    HT_P_KFF_RUDDER,
+    HT_P_KD_AILERON,
+    HT_P_KD_ELEVATOR,
+    HT_P_KD_RUDDER,
+    HT_P_V_REF,
+    HT_P_V_MIN,
+    HT_P_SCHEDULE,
+    HT_P_MAX_TILT,
+    HT_P_PITCH_MODE,
     HT_P_COUNT
 } ht_param_id_t;
 
@@ -120,35 +130,35 @@ ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id
 
 /* One control step's inputs. */
 typedef struct {
-    q14_t x, y, z;             /* DCM bottom row, used as given (not renormalized) */
-    q11_t turn_rate_rad_s;     /* desired rate about earth vertical, + = right turn */
-    q16_t pitch_ratio;         /* desired vertical / horizontal airspeed, + = climb */
-    int16_t airspeed_cm_s;     /* measured airspeed; anything below v_min is floored */
-    q11_t gyro_rad_s[3];       /* measured body rates about X, Y, Z */
-    uint8_t inverted;          /* nonzero: fly inverted */
+    q14_t x, y, z;         /* DCM bottom row, used as given (not renormalized) */
+    q11_t turn_rate_rad_s; /* desired rate about earth vertical, + = right turn */
+    q16_t pitch_ratio;     /* desired vertical / horizontal airspeed, + = climb */
+    int16_t airspeed_cm_s; /* measured airspeed; anything below v_min is floored */
+    q11_t gyro_rad_s[3];   /* measured body rates about X, Y, Z */
+    uint8_t inverted;      /* nonzero: fly inverted */
 } ht_input_t;
 
 /* Flags describing which branch of the law a step took. */
 enum {
-    HT_F_AIRSPEED_FLOORED = 1u << 0, /* airspeed < v_min: v_min used */
-    HT_F_TILT_LIMITED = 1u << 1,     /* |ratio| clamped to max_tilt */
-    HT_F_ROLL_BEYOND_90 = 1u << 2,   /* roll_dot <= 0: roll error = sign(cross) */
-    HT_F_PITCH_BEYOND_90 = 1u << 3,  /* pitch error saturated to +/-1 */
+    HT_F_AIRSPEED_FLOORED = 1u << 0,  /* airspeed < v_min: v_min used */
+    HT_F_TILT_LIMITED = 1u << 1,      /* |ratio| clamped to max_tilt */
+    HT_F_ROLL_BEYOND_90 = 1u << 2,    /* roll_dot <= 0: roll error = sign(cross) */
+    HT_F_PITCH_BEYOND_90 = 1u << 3,   /* pitch error saturated to +/-1 */
     HT_F_FUSELAGE_VERTICAL = 1u << 4, /* X = Z = 0: projection direction defined as [-1, 0, 0] */
-    HT_F_SURFACE_SATURATED = 1u << 5 /* at least one surface clamped to +/-1 */
+    HT_F_SURFACE_SATURATED = 1u << 5  /* at least one surface clamped to +/-1 */
 };
 
 /* One step's outputs: every intermediate of the spec, for logging. */
 typedef struct {
-    q11_t turn_rate_used_rad_s; /* omega after the tilt limit */
-    q16_t tilt_ratio;           /* omega * S / g after the limit */
-    q14_t tilt_x, tilt_y, tilt_z;              /* target tilt (Eq. 5, 6, inverted) */
+    q11_t turn_rate_used_rad_s;                     /* omega after the tilt limit */
+    q16_t tilt_ratio;                               /* omega * S / g after the limit */
+    q14_t tilt_x, tilt_y, tilt_z;                   /* target tilt (Eq. 5, 6, inverted) */
     q11_t rate_x_rad_s, rate_y_rad_s, rate_z_rad_s; /* target body rate (Eq. 3) */
-    q14_t roll_dot, roll_cross, roll_error;    /* Eq. 8, 9 */
-    q14_t pitch_error;                         /* Eq. 10 (earth-frame mode); 0 in tilt-cross mode */
-    q14_t pitch_body_x, pitch_body_z;          /* Eq. 11 or Eq. A.13 */
-    q14_t aileron, elevator, rudder;           /* [-1, 1] */
-    uint8_t flags;                             /* HT_F_* */
+    q14_t roll_dot, roll_cross, roll_error;         /* Eq. 8, 9 */
+    q14_t pitch_error;                /* Eq. 10 (earth-frame mode); 0 in tilt-cross mode */
+    q14_t pitch_body_x, pitch_body_z; /* Eq. 11 or Eq. A.13 */
+    q14_t aileron, elevator, rudder;  /* [-1, 1] */
+    uint8_t flags;                    /* HT_F_* */
 } ht_output_t;
 
 /*

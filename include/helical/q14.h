@@ -45,9 +45,9 @@ typedef int32_t q16_t;
  * Out-of-range constants are the caller's bug; the parameter checker refuses
  * the values that matter.
  */
-#define Q14_FROM_REAL(x) ((q14_t)((x) * 16384.0 + ((x) >= 0 ? 0.5 : -0.5)))
-#define Q11_FROM_REAL(x) ((q11_t)((x) * 2048.0 + ((x) >= 0 ? 0.5 : -0.5)))
-#define Q16_FROM_REAL(x) ((q16_t)((x) * 65536.0 + ((x) >= 0 ? 0.5 : -0.5)))
+#define Q14_FROM_REAL(x) ((q14_t)((x)*16384.0 + ((x) >= 0 ? 0.5 : -0.5)))
+#define Q11_FROM_REAL(x) ((q11_t)((x)*2048.0 + ((x) >= 0 ? 0.5 : -0.5)))
+#define Q16_FROM_REAL(x) ((q16_t)((x)*65536.0 + ((x) >= 0 ? 0.5 : -0.5)))
 
 /* --- saturation -------------------------------------------------------- */
 

@@ -9,11 +9,11 @@
 #include "helical/helical_turn.h"
 
 typedef struct {
-    double x, y, z;     /* DCM bottom row */
-    double turn_rate;   /* rad/s */
-    double pitch;       /* ratio */
-    double airspeed;    /* m/s */
-    double gyro[3];     /* rad/s about X, Y, Z */
+    double x, y, z;   /* DCM bottom row */
+    double turn_rate; /* rad/s */
+    double pitch;     /* ratio */
+    double airspeed;  /* m/s */
+    double gyro[3];   /* rad/s about X, Y, Z */
     int inverted;
 } ht_ref_input_t;
 
@@ -33,10 +33,10 @@ typedef struct {
     double aileron, elevator, rudder;
     /* Distances to the spec's branch boundaries, for sweeps that must skip
      * inputs on a boundary (where a tie can go either way). */
-    double ratio_margin;  /* |ratio| - max_tilt before the clamp */
-    double pitch_agree;   /* Y*Yt + a*t: <= 0 saturates the pitch error */
-    double pitch_raw;     /* the pitch error before saturation */
-    double a;             /* sqrt(X^2 + Z^2) */
+    double ratio_margin; /* |ratio| - max_tilt before the clamp */
+    double pitch_agree;  /* Y*Yt + a*t: <= 0 saturates the pitch error */
+    double pitch_raw;    /* the pitch error before saturation */
+    double a;            /* sqrt(X^2 + Z^2) */
 } ht_ref_output_t;
 
 /* The parameters exactly as the controller holds them (after conversion). */

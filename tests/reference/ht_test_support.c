@@ -55,11 +55,11 @@ int32_t ts_fix32(double v, int frac_bits)
 const ts_gain_set_t ts_gain_sets[] = {
     {"default (control-law.md)", HT_PARAMS_DEFAULT},
     {"c172p (kp 3/6/0.3, kd 0.5/1/1, kff 0/1/0.5, v_ref 50)",
-     {GAIN(3), GAIN(6), GAIN(0.3), 0, GAIN(1), GAIN(0.5), GAIN(0.5), GAIN(1), GAIN(1), 5000, 500,
-      0, GAIN(4), HT_PITCH_EARTH_FRAME}},
+     {GAIN(3), GAIN(6), GAIN(0.3), 0, GAIN(1), GAIN(0.5), GAIN(0.5), GAIN(1), GAIN(1), 5000, 500, 0,
+      GAIN(4), HT_PITCH_EARTH_FRAME}},
     {"T37 (kp 2/4/0.3, kd 0.3/1/1, kff 0/1/0.5, v_ref 110, v_min 20)",
-     {GAIN(2), GAIN(4), GAIN(0.3), 0, GAIN(1), GAIN(0.5), GAIN(0.3), GAIN(1), GAIN(1), 11000,
-      2000, 0, GAIN(4), HT_PITCH_EARTH_FRAME}},
+     {GAIN(2), GAIN(4), GAIN(0.3), 0, GAIN(1), GAIN(0.5), GAIN(0.3), GAIN(1), GAIN(1), 11000, 2000,
+      0, GAIN(4), HT_PITCH_EARTH_FRAME}},
     {"c172p scheduled (schedule = 1, v_min 10)",
      {GAIN(3), GAIN(6), GAIN(0.3), 0, GAIN(1), GAIN(0.5), GAIN(0.5), GAIN(1), GAIN(1), 5000, 1000,
       1, GAIN(4), HT_PITCH_EARTH_FRAME}},
@@ -79,9 +79,9 @@ void ts_err_add(ts_err_t *e, double core_real, double ref_real)
 }
 
 const char *const ts_output_names[TS_N_OUTPUTS] = {
-    "turn_rate_used", "tilt_x",     "tilt_y",       "tilt_z",       "rate_x",  "rate_y",
-    "rate_z",         "roll_dot",   "roll_cross",   "roll_error",   "pitch_error",
-    "pitch_body_x",   "pitch_body_z", "aileron",    "elevator",     "rudder"};
+    "turn_rate_used", "tilt_x",   "tilt_y",     "tilt_z",     "rate_x",      "rate_y",
+    "rate_z",         "roll_dot", "roll_cross", "roll_error", "pitch_error", "pitch_body_x",
+    "pitch_body_z",   "aileron",  "elevator",   "rudder"};
 
 void ts_errs_init(ts_err_t errs[TS_N_OUTPUTS])
 {
@@ -97,20 +97,29 @@ void ts_errs_init(ts_err_t errs[TS_N_OUTPUTS])
 void ts_errs_add_step(ts_err_t errs[TS_N_OUTPUTS], const ht_output_t *c, const ht_ref_output_t *r)
 {
     const double q14 = 1.0 / 16384.0, q11 = 1.0 / 2048.0;
-    const double core[TS_N_OUTPUTS] = {
-        c->turn_rate_used_rad_s * q11, c->tilt_x * q14,       c->tilt_y * q14,
-        c->tilt_z * q14,              c->rate_x_rad_s * q11, c->rate_y_rad_s * q11,
-        c->rate_z_rad_s * q11,        c->roll_dot * q14,     c->roll_cross * q14,
-        c->roll_error * q14,          c->pitch_error * q14,  c->pitch_body_x * q14,
-        c->pitch_body_z * q14,        c->aileron * q14,      c->elevator * q14,
-        c->rudder * q14};
+    const double core[TS_N_OUTPUTS] = {c->turn_rate_used_rad_s * q11,
+                                       c->tilt_x * q14,
+                                       c->tilt_y * q14,
+                                       c->tilt_z * q14,
+                                       c->rate_x_rad_s * q11,
+                                       c->rate_y_rad_s * q11,
+                                       c->rate_z_rad_s * q11,
+                                       c->roll_dot * q14,
+                                       c->roll_cross * q14,
+                                       c->roll_error * q14,
+                                       c->pitch_error * q14,
+                                       c->pitch_body_x * q14,
+                                       c->pitch_body_z * q14,
+                                       c->aileron * q14,
+                                       c->elevator * q14,
+                                       c->rudder * q14};
     /* The reference is not clamped to the output formats: clamp it the way
      * the core documents (Q11 rates saturate at +/-16 rad/s, Q14 at +/-2). */
     const double ref[TS_N_OUTPUTS] = {
-        r->turn_rate_used, r->tilt[0],    r->tilt[1],     r->tilt[2],       r->rate[0],
-        r->rate[1],        r->rate[2],    r->roll_dot,    r->roll_cross,    r->roll_error,
-        r->pitch_error,    r->pitch_body_x, r->pitch_body_z, r->aileron,   r->elevator,
-        r->rudder};
+        r->turn_rate_used, r->tilt[0],    r->tilt[1],     r->tilt[2],
+        r->rate[0],        r->rate[1],    r->rate[2],     r->roll_dot,
+        r->roll_cross,     r->roll_error, r->pitch_error, r->pitch_body_x,
+        r->pitch_body_z,   r->aileron,    r->elevator,    r->rudder};
     for (int i = 0; i < TS_N_OUTPUTS; i++) {
         double hi = 32767.0 * errs[i].lsb, lo = -32768.0 * errs[i].lsb;
         double v = ref[i] > hi ? hi : (ref[i] < lo ? lo : ref[i]);

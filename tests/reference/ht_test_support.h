@@ -32,8 +32,8 @@ extern const int ts_gain_set_count;
 /* The worst error of one output over a sweep, in LSB of its format. */
 typedef struct {
     const char *name;
-    double lsb;      /* the value of one LSB in real units */
-    double worst;    /* worst |core - reference| in LSB */
+    double lsb;   /* the value of one LSB in real units */
+    double worst; /* worst |core - reference| in LSB */
     long samples;
 } ts_err_t;
 

@@ -17,9 +17,7 @@ void setUp(void)
     const ht_params_t p = HT_PARAMS_DEFAULT;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, &p, NULL));
 }
-void tearDown(void)
-{
-}
+void tearDown(void) {}
 
 static void assert_bounded(const ht_output_t *o)
 {
@@ -28,7 +26,8 @@ static void assert_bounded(const ht_output_t *o)
     TEST_ASSERT_TRUE(o->rudder >= -Q14_ONE && o->rudder <= Q14_ONE);
     /* the target tilt is a unit vector whatever the inputs */
     double n = sqrt((double)o->tilt_x * o->tilt_x + (double)o->tilt_y * o->tilt_y +
-                    (double)o->tilt_z * o->tilt_z) / 16384.0;
+                    (double)o->tilt_z * o->tilt_z) /
+               16384.0;
     TEST_ASSERT_DOUBLE_WITHIN(3.0 / 16384.0, 1.0, n);
 }
 
@@ -76,10 +75,22 @@ static void test_nearly_vertical_fuselage_uses_the_tiny_direction(void)
 /* Every field at its most negative value, and at its most positive. */
 static void test_extreme_inputs_give_bounded_outputs(void)
 {
-    ht_input_t lo = {INT16_MIN, INT16_MIN, INT16_MIN, INT16_MIN, INT32_MIN, INT16_MIN,
-                     {INT16_MIN, INT16_MIN, INT16_MIN}, 1};
-    ht_input_t hi = {INT16_MAX, INT16_MAX, INT16_MAX, INT16_MAX, INT32_MAX, INT16_MAX,
-                     {INT16_MAX, INT16_MAX, INT16_MAX}, 0};
+    ht_input_t lo = {INT16_MIN,
+                     INT16_MIN,
+                     INT16_MIN,
+                     INT16_MIN,
+                     INT32_MIN,
+                     INT16_MIN,
+                     {INT16_MIN, INT16_MIN, INT16_MIN},
+                     1};
+    ht_input_t hi = {INT16_MAX,
+                     INT16_MAX,
+                     INT16_MAX,
+                     INT16_MAX,
+                     INT32_MAX,
+                     INT16_MAX,
+                     {INT16_MAX, INT16_MAX, INT16_MAX},
+                     0};
     for (int set = 0; set < ts_gain_set_count; set++) {
         ht_controller_t c;
         TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &ts_gain_sets[set].params, NULL));
@@ -101,14 +112,14 @@ static void assert_same_outputs(const ht_output_t *a, const ht_output_t *b)
 {
     TEST_ASSERT_EQUAL_INT(a->turn_rate_used_rad_s, b->turn_rate_used_rad_s);
     TEST_ASSERT_EQUAL_INT32(a->tilt_ratio, b->tilt_ratio);
-    const q14_t va[] = {a->tilt_x, a->tilt_y, a->tilt_z, a->rate_x_rad_s, a->rate_y_rad_s,
-                        a->rate_z_rad_s, a->roll_dot, a->roll_cross, a->roll_error,
-                        a->pitch_error, a->pitch_body_x, a->pitch_body_z, a->aileron,
-                        a->elevator, a->rudder};
-    const q14_t vb[] = {b->tilt_x, b->tilt_y, b->tilt_z, b->rate_x_rad_s, b->rate_y_rad_s,
-                        b->rate_z_rad_s, b->roll_dot, b->roll_cross, b->roll_error,
-                        b->pitch_error, b->pitch_body_x, b->pitch_body_z, b->aileron,
-                        b->elevator, b->rudder};
+    const q14_t va[] = {a->tilt_x,       a->tilt_y,       a->tilt_z,       a->rate_x_rad_s,
+                        a->rate_y_rad_s, a->rate_z_rad_s, a->roll_dot,     a->roll_cross,
+                        a->roll_error,   a->pitch_error,  a->pitch_body_x, a->pitch_body_z,
+                        a->aileron,      a->elevator,     a->rudder};
+    const q14_t vb[] = {b->tilt_x,       b->tilt_y,       b->tilt_z,       b->rate_x_rad_s,
+                        b->rate_y_rad_s, b->rate_z_rad_s, b->roll_dot,     b->roll_cross,
+                        b->roll_error,   b->pitch_error,  b->pitch_body_x, b->pitch_body_z,
+                        b->aileron,      b->elevator,     b->rudder};
     TEST_ASSERT_EQUAL_INT16_ARRAY(va, vb, sizeof va / sizeof va[0]);
 }
 
@@ -257,20 +268,47 @@ static void test_bad_parameters_are_refused_by_name(void)
 {
     const ht_params_t d = HT_PARAMS_DEFAULT;
     ht_params_t p;
-    p = d; p.kp_aileron = -1; check_refused(p, HT_P_KP_AILERON, "kp_aileron");
-    p = d; p.kp_rudder = 64 * Q16_ONE + 1; check_refused(p, HT_P_KP_RUDDER, "kp_rudder");
-    p = d; p.kff_elevator = -Q16_ONE; check_refused(p, HT_P_KFF_ELEVATOR, "kff_elevator");
-    p = d; p.kd_rudder = INT32_MIN; check_refused(p, HT_P_KD_RUDDER, "kd_rudder");
-    p = d; p.v_min_cm_s = 0; check_refused(p, HT_P_V_MIN, "v_min");
-    p = d; p.v_min_cm_s = -500; check_refused(p, HT_P_V_MIN, "v_min");
-    p = d; p.v_ref_cm_s = 499; check_refused(p, HT_P_V_REF, "v_ref");
-    p = d; p.v_ref_cm_s = 40000; check_refused(p, HT_P_V_REF, "v_ref");
-    p = d; p.schedule = 2; check_refused(p, HT_P_SCHEDULE, "schedule");
-    p = d; p.max_tilt = 0; check_refused(p, HT_P_MAX_TILT, "max_tilt");
-    p = d; p.max_tilt = 8 * Q16_ONE + 1; check_refused(p, HT_P_MAX_TILT, "max_tilt");
-    p = d; p.pitch_mode = 7; check_refused(p, HT_P_PITCH_MODE, "pitch_mode");
+    p = d;
+    p.kp_aileron = -1;
+    check_refused(p, HT_P_KP_AILERON, "kp_aileron");
+    p = d;
+    p.kp_rudder = 64 * Q16_ONE + 1;
+    check_refused(p, HT_P_KP_RUDDER, "kp_rudder");
+    p = d;
+    p.kff_elevator = -Q16_ONE;
+    check_refused(p, HT_P_KFF_ELEVATOR, "kff_elevator");
+    p = d;
+    p.kd_rudder = INT32_MIN;
+    check_refused(p, HT_P_KD_RUDDER, "kd_rudder");
+    p = d;
+    p.v_min_cm_s = 0;
+    check_refused(p, HT_P_V_MIN, "v_min");
+    p = d;
+    p.v_min_cm_s = -500;
+    check_refused(p, HT_P_V_MIN, "v_min");
+    p = d;
+    p.v_ref_cm_s = 499;
+    check_refused(p, HT_P_V_REF, "v_ref");
+    p = d;
+    p.v_ref_cm_s = 40000;
+    check_refused(p, HT_P_V_REF, "v_ref");
+    p = d;
+    p.schedule = 2;
+    check_refused(p, HT_P_SCHEDULE, "schedule");
+    p = d;
+    p.max_tilt = 0;
+    check_refused(p, HT_P_MAX_TILT, "max_tilt");
+    p = d;
+    p.max_tilt = 8 * Q16_ONE + 1;
+    check_refused(p, HT_P_MAX_TILT, "max_tilt");
+    p = d;
+    p.pitch_mode = 7;
+    check_refused(p, HT_P_PITCH_MODE, "pitch_mode");
     /* the limits themselves are accepted */
-    p = d; p.kp_aileron = 64 * Q16_ONE; p.max_tilt = 8 * Q16_ONE; p.v_min_cm_s = 100;
+    p = d;
+    p.kp_aileron = 64 * Q16_ONE;
+    p.max_tilt = 8 * Q16_ONE;
+    p.v_min_cm_s = 100;
     p.v_ref_cm_s = INT16_MAX;
     ht_controller_t c;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
@@ -291,8 +329,9 @@ static void test_largest_gains_do_not_wrap(void)
     p.max_tilt = 8 * Q16_ONE;
     ht_controller_t c;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
-    ht_input_t in = {INT16_MIN, INT16_MAX, INT16_MIN, INT16_MAX, INT32_MIN, 0,
-                     {INT16_MIN, INT16_MAX, INT16_MIN}, 1};
+    ht_input_t in = {
+        INT16_MIN, INT16_MAX, INT16_MIN, INT16_MAX, INT32_MIN, 0, {INT16_MIN, INT16_MAX, INT16_MIN},
+        1};
     ht_output_t out;
     ht_step(&c, &in, &out);
     assert_bounded(&out);

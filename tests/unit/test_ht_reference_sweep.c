@@ -22,16 +22,12 @@
  * and 8 LSB for the surfaces; the core does much better, and these limits hold
  * it to what it does (half an LSB is the final rounding alone), so that a
  * regression shows. Rates in Q11 LSB. */
-#define LIMIT_ANGLES_LSB 1.0
-#define LIMIT_RATES_LSB 0.51
+#define LIMIT_ANGLES_LSB   1.0
+#define LIMIT_RATES_LSB    0.51
 #define LIMIT_SURFACES_LSB 2.0
 
-void setUp(void)
-{
-}
-void tearDown(void)
-{
-}
+void setUp(void) {}
+void tearDown(void) {}
 
 static void random_input(uint64_t *rng, ht_input_t *in)
 {
@@ -112,8 +108,8 @@ static void sweep_gain_set(int set)
     for (int i = 0; i < TS_N_OUTPUTS; i++) {
         int is_rate = (i == 0 || (i >= 4 && i <= 6));
         int is_surface = (i >= 13);
-        double limit = is_rate ? LIMIT_RATES_LSB
-                               : (is_surface ? LIMIT_SURFACES_LSB : LIMIT_ANGLES_LSB);
+        double limit =
+            is_rate ? LIMIT_RATES_LSB : (is_surface ? LIMIT_SURFACES_LSB : LIMIT_ANGLES_LSB);
         if (errs[i].worst > limit) {
             printf("  FAIL %s: %.2f LSB > %.1f\n", errs[i].name, errs[i].worst, limit);
         }

@@ -19,9 +19,7 @@ void setUp(void)
     const ht_params_t p = HT_PARAMS_DEFAULT;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl_default, &p, NULL));
 }
-void tearDown(void)
-{
-}
+void tearDown(void) {}
 
 static ht_input_t level_input(void)
 {
