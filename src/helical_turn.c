@@ -12,6 +12,8 @@
 
 #include "helical/helical_turn.h"
 
+#include "q_inline.h"
+
 /* 2^35 * 32 / 980.665: (Q11 rad/s * cm/s) -> Q16 ratio, shift 35. */
 #define RATIO_FROM_OMEGA_S 1121189833L
 #define RATIO_SHIFT        35u
@@ -30,12 +32,12 @@ static int32_t div_round_extra(uint32_t num, uint32_t den, unsigned extra)
 
 static q14_t q14_from_q28(int32_t v)
 {
-    return q_sat16(q_rshift_round(v, 14u));
+    return qi_sat16(qi_rshift_round(v, 14u));
 }
 
 static q11_t q11_from_q20(int32_t v)
 {
-    return q_sat16(q_rshift_round(v, 9u));
+    return qi_sat16(qi_rshift_round(v, 9u));
 }
 
 static int32_t sign_unit_q28(int32_t v)
@@ -54,7 +56,7 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
 {
     turn_t t;
     int32_t omega_times_s = (int32_t)omega_q11 * s_cm_s; /* |.| <= 2^30 */
-    t.ratio_q16 = q_mul32(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_SHIFT);
+    t.ratio_q16 = qi_mul32(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_SHIFT);
     t.omega_q20 = (int32_t)omega_q11 * 512;
     if (t.ratio_q16 > ctl->max_tilt || t.ratio_q16 < -ctl->max_tilt) {
         int32_t omega_max_q20 =
@@ -77,9 +79,9 @@ static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int3
     (void)q_unit2_q28(-ratio_q16, Q16_ONE, &x1, &z1);
     q16_t p = (pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16;
     (void)q_unit2_q28(p, Q16_ONE, &y, &t);
-    tilt[0] = q_mul32(x1, t, 28u);
+    tilt[0] = qi_mul32(x1, t, 28u);
     tilt[1] = y;
-    tilt[2] = q_mul32(z1, t, 28u);
+    tilt[2] = qi_mul32(z1, t, 28u);
     if (inverted) {
         tilt[0] = -tilt[0];
         tilt[2] = -tilt[2];
@@ -90,14 +92,14 @@ static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int3
 /* a*b - c*d with a, c in Q14 (the actual row) and b, d in Q28: result Q28. */
 static int32_t cross_q28(q14_t a, int32_t b, q14_t c, int32_t d)
 {
-    return q_sub_sat32(q_mul32(a, b, 14u), q_mul32(c, d, 14u));
+    return qi_sub_sat32(qi_mul32(a, b, 14u), qi_mul32(c, d, 14u));
 }
 
 /* Roll error (Eq. 8, 9). */
 static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *dot, int32_t *cross,
                           uint8_t *flags)
 {
-    *dot = q_add_sat32(q_mul32(in->x, tilt[0], 14u), q_mul32(in->z, tilt[2], 14u));
+    *dot = qi_add_sat32(qi_mul32(in->x, tilt[0], 14u), qi_mul32(in->z, tilt[2], 14u));
     *cross = cross_q28(in->z, tilt[0], in->x, tilt[2]);
     if (*dot > 0) {
         return *cross;
@@ -112,7 +114,8 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
 {
     int32_t ux, uz, a;
     if (q_unit2_q28(in->x, in->z, &ux, &uz)) {
-        a = q_add_sat32(q_mul32(in->x, ux, 14u), q_mul32(in->z, uz, 14u)); /* [X, Z].u = |[X, Z]| */
+        a = qi_add_sat32(qi_mul32(in->x, ux, 14u),
+                         qi_mul32(in->z, uz, 14u)); /* [X, Z].u = |[X, Z]| */
     } else {
         /* Fuselage vertical: [-Z, 0, X] / a has no direction. Define it as the
          * upright one, [-1, 0, 0], so the whole pitch error goes to the
@@ -122,14 +125,14 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
         uz = Q28_ONE;
         a = 0;
     }
-    int32_t pe = q_sub_sat32(q_mul32(tilt[1], a, 28u), q_mul32(in->y, t_q28, 14u));
-    int32_t agree = q_add_sat32(q_mul32(in->y, tilt[1], 14u), q_mul32(a, t_q28, 28u));
+    int32_t pe = qi_sub_sat32(qi_mul32(tilt[1], a, 28u), qi_mul32(in->y, t_q28, 14u));
+    int32_t agree = qi_add_sat32(qi_mul32(in->y, tilt[1], 14u), qi_mul32(a, t_q28, 28u));
     if (agree <= 0) {
         *flags |= HT_F_PITCH_BEYOND_90;
         pe = sign_unit_q28(pe);
     }
-    body[0] = q_mul32(-pe, uz, 28u);
-    body[2] = q_mul32(pe, ux, 28u);
+    body[0] = qi_mul32(-pe, uz, 28u);
+    body[2] = qi_mul32(pe, ux, 28u);
     return pe;
 }
 
@@ -144,18 +147,18 @@ static void pitch_tilt_cross(const ht_input_t *in, const int32_t tilt[3], int32_
 static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_p_q20,
                            int32_t s_ff_q20, int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
 {
-    q16_t gp = q_mul32(ctl->gains.kp[axis], s_p_q20, 20u);
-    q16_t gff = q_mul32(ctl->gains.kff[axis], s_ff_q20, 20u);
-    q16_t gd = q_mul32(ctl->gains.kd[axis], s_p_q20, 20u);
+    q16_t gp = qi_mul32(ctl->gains.kp[axis], s_p_q20, 20u);
+    q16_t gff = qi_mul32(ctl->gains.kff[axis], s_ff_q20, 20u);
+    q16_t gd = qi_mul32(ctl->gains.kd[axis], s_p_q20, 20u);
     int32_t rate_error_q20 = rate_d_q20 - (int32_t)gyro_q11 * 512;
-    int32_t d = q_mul32(gp, e_q28, 24u);
-    d = q_sub_sat32(q_mul32(gff, rate_d_q20, 16u), d);
-    return q_add_sat32(d, q_mul32(gd, rate_error_q20, 16u));
+    int32_t d = qi_mul32(gp, e_q28, 24u);
+    d = qi_sub_sat32(qi_mul32(gff, rate_d_q20, 16u), d);
+    return qi_add_sat32(d, qi_mul32(gd, rate_error_q20, 16u));
 }
 
 static q14_t surface_from_q20(int32_t d_q20, uint8_t *flags)
 {
-    int32_t s = q_rshift_round(d_q20, 6u);
+    int32_t s = qi_rshift_round(d_q20, 6u);
     if (s > Q14_ONE || s < -Q14_ONE) {
         *flags |= HT_F_SURFACE_SATURATED;
         s = (s > 0) ? Q14_ONE : -Q14_ONE;
@@ -191,7 +194,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     const q14_t row[3] = {in->x, in->y, in->z};
     int32_t rate_d[3];
     for (unsigned i = 0; i < 3u; i++) {
-        rate_d[i] = q_mul32(turn.omega_q20, row[i], 14u);
+        rate_d[i] = qi_mul32(turn.omega_q20, row[i], 14u);
     }
 
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
@@ -213,7 +216,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         d[i] = axis_demand(ctl, i, s_p_q20, s_ff_q20, e[i], rate_d[i], in->gyro_rad_s[i]);
     }
     o.aileron = surface_from_q20(d[1], &flags);
-    o.elevator = surface_from_q20(q_sub_sat32(0, d[0]), &flags);
+    o.elevator = surface_from_q20(qi_sub_sat32(0, d[0]), &flags);
     o.rudder = surface_from_q20(d[2], &flags);
 
     o.turn_rate_used_rad_s = q11_from_q20(turn.omega_q20);

@@ -5,7 +5,7 @@
  */
 #include "helical/q14.h"
 
-#include "q14_target.h"
+#include "q_inline.h"
 
 /* The library's rounding shifts rely on arithmetic >> of negative values. */
 _Static_assert((-1 >> 1) == -1, "signed right shift must be arithmetic");
@@ -13,7 +13,7 @@ _Static_assert((-3L >> 1) == -2L, "signed right shift must be arithmetic");
 
 int16_t q_sat16(int32_t x)
 {
-    return Q_TARGET_SAT16(x);
+    return qi_sat16(x);
 }
 
 int32_t q_clamp32(int32_t x, int32_t lo, int32_t hi)
@@ -29,149 +29,45 @@ int32_t q_clamp32(int32_t x, int32_t lo, int32_t hi)
 
 int16_t q14_add_sat(int16_t a, int16_t b)
 {
-    return q_sat16((int32_t)a + (int32_t)b);
+    return qi_sat16((int32_t)a + (int32_t)b);
 }
 
 int16_t q14_sub_sat(int16_t a, int16_t b)
 {
-    return q_sat16((int32_t)a - (int32_t)b);
+    return qi_sat16((int32_t)a - (int32_t)b);
 }
 
 int32_t q_add_sat32(int32_t a, int32_t b)
 {
-    if (b > 0 && a > INT32_MAX - b) {
-        return INT32_MAX;
-    }
-    if (b < 0 && a < INT32_MIN - b) {
-        return INT32_MIN;
-    }
-    return a + b;
+    return qi_add_sat32(a, b);
 }
 
 int32_t q_sub_sat32(int32_t a, int32_t b)
 {
-    if (b < 0 && a > INT32_MAX + b) {
-        return INT32_MAX;
-    }
-    if (b > 0 && a < INT32_MIN + b) {
-        return INT32_MIN;
-    }
-    return a - b;
+    return qi_sub_sat32(a, b);
 }
 
 int32_t q_rshift_round(int32_t x, unsigned shift)
 {
-    /* floor(x / 2^s) plus the first dropped bit: round half up, no overflow. */
-    return (x >> shift) + ((x >> (shift - 1u)) & 1);
+    return qi_rshift_round(x, shift);
 }
 
 q14_t q14_mul(q14_t a, q14_t b)
 {
     int32_t p = Q_TARGET_MUL16(a, b);
-    return q_sat16((p + (1 << 13)) >> 14);
+    return qi_sat16((p + (1 << 13)) >> 14);
 }
 
-/* ---- the wide multiply ---------------------------------------------------- */
+/* ---- the wide multiply (see q_inline.h) ---------------------------------- */
 
-#if Q_TARGET_HAS_MUL64
 int32_t q_mul32(int32_t a, int32_t b, unsigned shift)
 {
-    /* Cores with a 32x32->64 multiplier (SMULL, x86-64 IMUL): same bits as
-     * the portable version below, proven by test_q14_wide. */
-    int64_t p = (int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u));
-    p >>= shift;
-    if (p > INT32_MAX) {
-        return INT32_MAX;
-    }
-    if (p < INT32_MIN) {
-        return INT32_MIN;
-    }
-    return (int32_t)p;
-}
-#else
-int32_t q_mul32(int32_t a, int32_t b, unsigned shift)
-{
-    return q_mul32_portable(a, b, shift);
-}
-#endif
-
-/* 64-bit unsigned value as two 32-bit halves. */
-typedef struct {
-    uint32_t hi, lo;
-} u64pair_t;
-
-static u64pair_t umul32(uint32_t a, uint32_t b)
-{
-    uint32_t a0 = a & 0xFFFFu, a1 = a >> 16;
-    uint32_t b0 = b & 0xFFFFu, b1 = b >> 16;
-    uint32_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-    uint32_t mid = p01 + p10;
-    uint32_t mid_carry = (mid < p01) ? 0x10000u : 0u;
-    u64pair_t r;
-    r.lo = p00 + (mid << 16);
-    r.hi = p11 + (mid >> 16) + mid_carry + ((r.lo < p00) ? 1u : 0u);
-    return r;
-}
-
-static u64pair_t u64_add(u64pair_t x, uint32_t hi, uint32_t lo)
-{
-    u64pair_t r;
-    r.lo = x.lo + lo;
-    r.hi = x.hi + hi + ((r.lo < x.lo) ? 1u : 0u);
-    return r;
-}
-
-/* x >> s for s in [1, 62]. */
-static u64pair_t u64_shr(u64pair_t x, unsigned s)
-{
-    u64pair_t r;
-    if (s >= 32u) {
-        r.lo = (s == 32u) ? x.hi : (x.hi >> (s - 32u));
-        r.hi = 0u;
-    } else {
-        r.lo = (x.lo >> s) | (x.hi << (32u - s));
-        r.hi = x.hi >> s;
-    }
-    return r;
-}
-
-/* 2^k as a 64-bit pair, k in [0, 62]. */
-static u64pair_t u64_pow2(unsigned k)
-{
-    u64pair_t r;
-    r.hi = (k >= 32u) ? (1u << (k - 32u)) : 0u;
-    r.lo = (k >= 32u) ? 0u : (1u << k);
-    return r;
+    return qi_mul32(a, b, shift);
 }
 
 int32_t q_mul32_portable(int32_t a, int32_t b, unsigned shift)
 {
-    int negative = (a < 0) != (b < 0);
-    uint32_t ua = (a < 0) ? (0u - (uint32_t)a) : (uint32_t)a;
-    uint32_t ub = (b < 0) ? (0u - (uint32_t)b) : (uint32_t)b;
-    u64pair_t p = umul32(ua, ub);
-    if (ua == 0u || ub == 0u) {
-        negative = 0;
-    }
-    /* Ties toward +inf: a positive product adds half, a negative product
-     * adds half less one before the magnitude is floored. */
-    u64pair_t half = u64_pow2(shift - 1u);
-    if (negative) {
-        half = (half.lo == 0u) ? (u64pair_t){half.hi - 1u, 0xFFFFFFFFu}
-                               : (u64pair_t){half.hi, half.lo - 1u};
-    }
-    p = u64_add(p, half.hi, half.lo);
-    p = u64_shr(p, shift);
-    if (negative) {
-        if (p.hi != 0u || p.lo > 0x80000000u) {
-            return INT32_MIN;
-        }
-        return (int32_t)(0u - p.lo);
-    }
-    if (p.hi != 0u || p.lo > (uint32_t)INT32_MAX) {
-        return INT32_MAX;
-    }
-    return (int32_t)p.lo;
+    return qi_mul32_portable(a, b, shift);
 }
 
 /* ---- division and square roots ------------------------------------------ */
@@ -186,7 +82,7 @@ q14_t q14_div(q14_t num, q14_t den)
     int32_t an = (n < 0) ? -n : n;
     int32_t ad = (d < 0) ? -d : d;
     int32_t q = (an + ad / 2) / ad; /* ties away from zero */
-    return q_sat16(((n < 0) != (d < 0)) ? -q : q);
+    return qi_sat16(((n < 0) != (d < 0)) ? -q : q);
 }
 
 q14_t q14_recip(q14_t x)
@@ -236,16 +132,16 @@ q14_t q14_dot3(const q14_t a[3], const q14_t b[3])
     /* Each product is at most 2^30 in magnitude; three fit only as a
      * saturating sum. */
     int32_t s = (int32_t)a[0] * b[0];
-    s = q_add_sat32(s, (int32_t)a[1] * b[1]);
-    s = q_add_sat32(s, (int32_t)a[2] * b[2]);
-    return q_sat16(q_rshift_round(s, 14));
+    s = qi_add_sat32(s, (int32_t)a[1] * b[1]);
+    s = qi_add_sat32(s, (int32_t)a[2] * b[2]);
+    return qi_sat16(qi_rshift_round(s, 14));
 }
 
 static q14_t cross_term(q14_t a, q14_t b, q14_t c, q14_t d)
 {
     /* a*b - c*d: each product is in [-2^30, 2^30], so the difference fits. */
     int32_t s = (int32_t)a * b - (int32_t)c * d;
-    return q_sat16(q_rshift_round(s, 14));
+    return qi_sat16(qi_rshift_round(s, 14));
 }
 
 void q14_cross3(const q14_t a[3], const q14_t b[3], q14_t out[3])
@@ -283,29 +179,25 @@ static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
         }
         return 0;
     }
-    unsigned down = 0u;
-    while ((big >> down) >= 0x40000000u) {
-        down++;
-    }
-    unsigned up = 0u;
-    while ((big << up) < 0x20000000u) {
-        up++;
-    }
+    /* bring the top bit of big to bit 29 */
+    unsigned lz = qi_clz32(big);
+    unsigned down = (lz < 2u) ? 2u - lz : 0u;
+    unsigned up = (lz > 2u) ? lz - 2u : 0u;
     int32_t sum_q28 = 0;
     for (unsigned i = 0; i < n; i++) {
         if (down > 0u) {
             m[i] = (m[i] >> down) + ((m[i] >> (down - 1u)) & 1u);
         }
         m[i] <<= up;
-        sum_q28 += q_mul32((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
+        sum_q28 += qi_mul32((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
     }
     /* sqrt(S) * 2^15 from S in Q30, then y0 = 2^32 / that = 1/sqrt(S) in Q17. */
     uint32_t root_q15 = q_isqrt32_round((uint32_t)sum_q28 << 2);
     int32_t y_q28 = (int32_t)((0xFFFFFFFFu / root_q15) << 11);
-    int32_t sy2_q28 = q_mul32(sum_q28, q_mul32(y_q28, y_q28, 28u), 28u);
-    y_q28 = q_mul32(y_q28, ((3 << 28) - sy2_q28) / 2, 28u);
+    int32_t sy2_q28 = qi_mul32(sum_q28, qi_mul32(y_q28, y_q28, 28u), 28u);
+    y_q28 = qi_mul32(y_q28, ((3 << 28) - sy2_q28) / 2, 28u);
     for (unsigned i = 0; i < n; i++) {
-        int32_t u = q_mul32((int32_t)m[i], y_q28, 30u);
+        int32_t u = qi_mul32((int32_t)m[i], y_q28, 30u);
         out[i] = (v[i] < 0) ? -u : u;
     }
     return 1;
@@ -331,7 +223,7 @@ static int unit_n(const int32_t *v, unsigned n, q16_t *out)
     int32_t u[3];
     int ok = unit_n_q28(v, n, u);
     for (unsigned i = 0; i < n; i++) {
-        out[i] = q_rshift_round(u[i], 12u);
+        out[i] = qi_rshift_round(u[i], 12u);
     }
     return ok;
 }
@@ -373,7 +265,7 @@ static int normalize_q14(q14_t *v, unsigned n)
     }
     int ok = unit_n_q28(w, n, u);
     for (unsigned i = 0; i < n; i++) {
-        v[i] = q_sat16(q_rshift_round(u[i], 14u));
+        v[i] = qi_sat16(qi_rshift_round(u[i], 14u));
     }
     return ok;
 }

@@ -1,0 +1,165 @@
+/*
+ * q_inline.h - the library's hot primitives as static inline functions, so
+ * that the control step gets them without a call and with its constant shifts
+ * folded. The public functions of q14.h are thin wrappers around these, and
+ * the tests of q14.h therefore test these.
+ */
+#ifndef HELICAL_Q_INLINE_H
+#define HELICAL_Q_INLINE_H
+
+#include <stdint.h>
+
+#include "q14_target.h"
+
+static inline int16_t qi_sat16(int32_t x)
+{
+    return Q_TARGET_SAT16(x);
+}
+
+/* round(x / 2^shift), ties toward +inf, shift in [1, 31]: floor plus the
+ * first dropped bit, so it cannot overflow. */
+static inline int32_t qi_rshift_round(int32_t x, unsigned shift)
+{
+    return (x >> shift) + ((x >> (shift - 1u)) & 1);
+}
+
+/* Count of leading zero bits of a nonzero x (CLZ on ARMv7-M, a libgcc helper
+ * on ARMv6-M, a loop where the compiler has no builtin). */
+static inline unsigned qi_clz32(uint32_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (unsigned)__builtin_clz(x);
+#else
+    unsigned n = 0u;
+    while ((x & 0x80000000u) == 0u) {
+        x <<= 1;
+        n++;
+    }
+    return n;
+#endif
+}
+
+static inline int32_t qi_add_sat32(int32_t a, int32_t b)
+{
+    if (b > 0 && a > INT32_MAX - b) {
+        return INT32_MAX;
+    }
+    if (b < 0 && a < INT32_MIN - b) {
+        return INT32_MIN;
+    }
+    return a + b;
+}
+
+static inline int32_t qi_sub_sat32(int32_t a, int32_t b)
+{
+    if (b < 0 && a > INT32_MAX + b) {
+        return INT32_MAX;
+    }
+    if (b > 0 && a < INT32_MIN + b) {
+        return INT32_MIN;
+    }
+    return a - b;
+}
+
+/* 64-bit unsigned value as two 32-bit halves. */
+typedef struct {
+    uint32_t hi, lo;
+} u64pair_t;
+
+static inline u64pair_t umul32(uint32_t a, uint32_t b)
+{
+    uint32_t a0 = a & 0xFFFFu, a1 = a >> 16;
+    uint32_t b0 = b & 0xFFFFu, b1 = b >> 16;
+    uint32_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint32_t mid = p01 + p10;
+    uint32_t mid_carry = (mid < p01) ? 0x10000u : 0u;
+    u64pair_t r;
+    r.lo = p00 + (mid << 16);
+    r.hi = p11 + (mid >> 16) + mid_carry + ((r.lo < p00) ? 1u : 0u);
+    return r;
+}
+
+static inline u64pair_t u64_add(u64pair_t x, uint32_t hi, uint32_t lo)
+{
+    u64pair_t r;
+    r.lo = x.lo + lo;
+    r.hi = x.hi + hi + ((r.lo < x.lo) ? 1u : 0u);
+    return r;
+}
+
+/* x >> s for s in [1, 62]. */
+static inline u64pair_t u64_shr(u64pair_t x, unsigned s)
+{
+    u64pair_t r;
+    if (s >= 32u) {
+        r.lo = (s == 32u) ? x.hi : (x.hi >> (s - 32u));
+        r.hi = 0u;
+    } else {
+        r.lo = (x.lo >> s) | (x.hi << (32u - s));
+        r.hi = x.hi >> s;
+    }
+    return r;
+}
+
+/* 2^k as a 64-bit pair, k in [0, 62]. */
+static inline u64pair_t u64_pow2(unsigned k)
+{
+    u64pair_t r;
+    r.hi = (k >= 32u) ? (1u << (k - 32u)) : 0u;
+    r.lo = (k >= 32u) ? 0u : (1u << k);
+    return r;
+}
+
+static inline int32_t qi_mul32_portable(int32_t a, int32_t b, unsigned shift)
+{
+    int negative = (a < 0) != (b < 0);
+    uint32_t ua = (a < 0) ? (0u - (uint32_t)a) : (uint32_t)a;
+    uint32_t ub = (b < 0) ? (0u - (uint32_t)b) : (uint32_t)b;
+    u64pair_t p = umul32(ua, ub);
+    if (ua == 0u || ub == 0u) {
+        negative = 0;
+    }
+    /* Ties toward +inf: a positive product adds half, a negative product
+     * adds half less one before the magnitude is floored. */
+    u64pair_t half = u64_pow2(shift - 1u);
+    if (negative) {
+        half = (half.lo == 0u) ? (u64pair_t){half.hi - 1u, 0xFFFFFFFFu}
+                               : (u64pair_t){half.hi, half.lo - 1u};
+    }
+    p = u64_add(p, half.hi, half.lo);
+    p = u64_shr(p, shift);
+    if (negative) {
+        if (p.hi != 0u || p.lo > 0x80000000u) {
+            return INT32_MIN;
+        }
+        return (int32_t)(0u - p.lo);
+    }
+    if (p.hi != 0u || p.lo > (uint32_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    return (int32_t)p.lo;
+}
+
+#if Q_TARGET_HAS_MUL64
+static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
+{
+    /* Cores with a 32x32->64 multiplier (SMULL, x86-64 IMUL): same bits as
+     * the portable version below, proven by test_q14_wide. */
+    int64_t p = (int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u));
+    p >>= shift;
+    if (p > INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (p < INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)p;
+}
+#else
+static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
+{
+    return qi_mul32_portable(a, b, shift);
+}
+#endif
+
+#endif /* HELICAL_Q_INLINE_H */
