@@ -6,7 +6,10 @@
  * earlier steps (a gain of 30 would turn half an LSB into 15); rates and the
  * turn rate are carried in Q20 rad/s; the surface terms are summed in Q20
  * commands and rounded once to Q14. Every narrowing rounds to nearest and
- * saturates. Products go through q_mul32, exact before its one rounding.
+ * saturates. Products are exact before their one rounding (q_inline.h); the
+ * ones marked _fit are bounded by construction: unit-size factors (|tilt| <= 1
+ * in Q28, |row| <= 2 in Q14, so every product or sum of two is below 2^30),
+ * rates below 2^25 in Q20, and the parameter ranges of ht_init.
  */
 #include <stddef.h>
 
@@ -18,17 +21,7 @@
 #define RATIO_FROM_OMEGA_S 1121189833L
 #define RATIO_SHIFT        35u
 
-/* round(num * 2^extra / den) for num >= 0, den > 0, num < 2^31, extra <= 4,
- * by long division so that num * 2^extra need not fit 32 bits. */
-static int32_t div_round_extra(uint32_t num, uint32_t den, unsigned extra)
-{
-    uint32_t q = num / den;
-    uint32_t r = num % den;
-    uint32_t frac = ((r << extra) + den / 2u) / den;
-    return (int32_t)((q << extra) + frac);
-}
-
-#define Q28_ONE (1L << 28)
+#define Q28_ONE ((int32_t)1 << 28)
 
 static q14_t q14_from_q28(int32_t v)
 {
@@ -51,16 +44,22 @@ typedef struct {
     q16_t ratio_q16;
 } turn_t;
 
-static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_cm_s,
+/* 1/S, for the tilt limit and the airspeed scales: 1/S = inv_q30 * 2^-(30 + exp). */
+typedef struct {
+    int32_t inv_q30;
+    unsigned exp;
+} recip_t;
+
+static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_cm_s, recip_t inv_s,
                          uint8_t *flags)
 {
     turn_t t;
     int32_t omega_times_s = (int32_t)omega_q11 * s_cm_s; /* |.| <= 2^30 */
-    t.ratio_q16 = qi_mul32(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_SHIFT);
+    t.ratio_q16 = qi_mul32_fit(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_SHIFT);
     t.omega_q20 = (int32_t)omega_q11 * 512;
     if (t.ratio_q16 > ctl->max_tilt || t.ratio_q16 < -ctl->max_tilt) {
-        int32_t omega_max_q20 =
-            div_round_extra((uint32_t)ctl->max_tilt_g_q16, (uint32_t)s_cm_s, 4u);
+        /* max_tilt * g / S: Q16 * Q30 * 2^-(30 + exp) -> Q20 */
+        int32_t omega_max_q20 = qi_mul32_fit(ctl->max_tilt_g_q16, inv_s.inv_q30, 26u + inv_s.exp);
         *flags |= HT_F_TILT_LIMITED;
         t.ratio_q16 = (t.ratio_q16 > 0) ? ctl->max_tilt : -ctl->max_tilt;
         t.omega_q20 = (omega_q11 > 0) ? omega_max_q20 : -omega_max_q20;
@@ -79,9 +78,9 @@ static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int3
     (void)q_unit2_q28(-ratio_q16, Q16_ONE, &x1, &z1);
     q16_t p = (pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16;
     (void)q_unit2_q28(p, Q16_ONE, &y, &t);
-    tilt[0] = qi_mul32(x1, t, 28u);
+    tilt[0] = qi_mul32_fit(x1, t, 28u);
     tilt[1] = y;
-    tilt[2] = qi_mul32(z1, t, 28u);
+    tilt[2] = qi_mul32_fit(z1, t, 28u);
     if (inverted) {
         tilt[0] = -tilt[0];
         tilt[2] = -tilt[2];
@@ -92,14 +91,14 @@ static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int3
 /* a*b - c*d with a, c in Q14 (the actual row) and b, d in Q28: result Q28. */
 static int32_t cross_q28(q14_t a, int32_t b, q14_t c, int32_t d)
 {
-    return qi_sub_sat32(qi_mul32(a, b, 14u), qi_mul32(c, d, 14u));
+    return qi_mul32x16_fit(b, a, 14u) - qi_mul32x16_fit(d, c, 14u); /* each |.| <= 2^29 */
 }
 
 /* Roll error (Eq. 8, 9). */
 static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *dot, int32_t *cross,
                           uint8_t *flags)
 {
-    *dot = qi_add_sat32(qi_mul32(in->x, tilt[0], 14u), qi_mul32(in->z, tilt[2], 14u));
+    *dot = qi_mul32x16_fit(tilt[0], in->x, 14u) + qi_mul32x16_fit(tilt[2], in->z, 14u);
     *cross = cross_q28(in->z, tilt[0], in->x, tilt[2]);
     if (*dot > 0) {
         return *cross;
@@ -114,8 +113,8 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
 {
     int32_t ux, uz, a;
     if (q_unit2_q28(in->x, in->z, &ux, &uz)) {
-        a = qi_add_sat32(qi_mul32(in->x, ux, 14u),
-                         qi_mul32(in->z, uz, 14u)); /* [X, Z].u = |[X, Z]| */
+        /* [X, Z].u = |[X, Z]| <= 2.83: each product below 2^30 */
+        a = qi_mul32x16_fit(ux, in->x, 14u) + qi_mul32x16_fit(uz, in->z, 14u);
     } else {
         /* Fuselage vertical: [-Z, 0, X] / a has no direction. Define it as the
          * upright one, [-1, 0, 0], so the whole pitch error goes to the
@@ -125,14 +124,15 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
         uz = Q28_ONE;
         a = 0;
     }
-    int32_t pe = qi_sub_sat32(qi_mul32(tilt[1], a, 28u), qi_mul32(in->y, t_q28, 14u));
-    int32_t agree = qi_add_sat32(qi_mul32(in->y, tilt[1], 14u), qi_mul32(a, t_q28, 28u));
+    /* |Yt * a| <= 2.83 * 2^28 and |Y * t| <= 2^29: the sums stay below 2^31 */
+    int32_t pe = qi_mul32_fit(tilt[1], a, 28u) - qi_mul32x16_fit(t_q28, in->y, 14u);
+    int32_t agree = qi_mul32x16_fit(tilt[1], in->y, 14u) + qi_mul32_fit(a, t_q28, 28u);
     if (agree <= 0) {
         *flags |= HT_F_PITCH_BEYOND_90;
         pe = sign_unit_q28(pe);
     }
-    body[0] = qi_mul32(-pe, uz, 28u);
-    body[2] = qi_mul32(pe, ux, 28u);
+    body[0] = qi_mul32_fit(-pe, uz, 28u);
+    body[2] = qi_mul32_fit(pe, ux, 28u);
     return pe;
 }
 
@@ -147,9 +147,9 @@ static void pitch_tilt_cross(const ht_input_t *in, const int32_t tilt[3], int32_
 static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_p_q20,
                            int32_t s_ff_q20, int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
 {
-    q16_t gp = qi_mul32(ctl->gains.kp[axis], s_p_q20, 20u);
-    q16_t gff = qi_mul32(ctl->gains.kff[axis], s_ff_q20, 20u);
-    q16_t gd = qi_mul32(ctl->gains.kd[axis], s_p_q20, 20u);
+    q16_t gp = qi_mul32_fit(ctl->gains.kp[axis], s_p_q20, 20u);
+    q16_t gff = qi_mul32_fit(ctl->gains.kff[axis], s_ff_q20, 20u);
+    q16_t gd = qi_mul32_fit(ctl->gains.kd[axis], s_p_q20, 20u);
     int32_t rate_error_q20 = rate_d_q20 - (int32_t)gyro_q11 * 512;
     int32_t d = qi_mul32(gp, e_q28, 24u);
     d = qi_sub_sat32(qi_mul32(gff, rate_d_q20, 16u), d);
@@ -171,11 +171,12 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     if (out == NULL) {
         return;
     }
-    ht_output_t o = {0};
     if (ctl == NULL || in == NULL || !ctl->ready) {
-        *out = o;
+        const ht_output_t zero = {0};
+        *out = zero;
         return;
     }
+    ht_output_t o; /* every field is written below */
     uint8_t flags = 0u;
 
     /* 1. Airspeed floor and tilt limit. */
@@ -184,7 +185,9 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         s_cm_s = ctl->v_min_cm_s;
         flags |= HT_F_AIRSPEED_FLOORED;
     }
-    turn_t turn = limit_turn(ctl, in->turn_rate_rad_s, s_cm_s, &flags);
+    recip_t inv_s;
+    inv_s.inv_q30 = q_recip_q30(s_cm_s, &inv_s.exp);
+    turn_t turn = limit_turn(ctl, in->turn_rate_rad_s, s_cm_s, inv_s, &flags);
 
     /* 2-3. Target tilt. */
     int32_t tilt[3], t_q28;
@@ -194,7 +197,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     const q14_t row[3] = {in->x, in->y, in->z};
     int32_t rate_d[3];
     for (unsigned i = 0; i < 3u; i++) {
-        rate_d[i] = qi_mul32(turn.omega_q20, row[i], 14u);
+        rate_d[i] = qi_mul32x16_fit(turn.omega_q20, row[i], 14u); /* <= 2^25 */
     }
 
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
@@ -207,8 +210,8 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     }
 
     /* 9. Airspeed scales, Q20: s_ff = v_ref / S, s_p = s_ff if scheduled. */
-    int32_t s_ff_q20 = div_round_extra((uint32_t)ctl->v_ref_cm_s << 16, (uint32_t)s_cm_s, 4u);
-    int32_t s_p_q20 = ctl->schedule ? s_ff_q20 : (1L << 20);
+    int32_t s_ff_q20 = qi_mul32_fit(ctl->v_ref_cm_s, inv_s.inv_q30, 10u + inv_s.exp);
+    int32_t s_p_q20 = ctl->schedule ? s_ff_q20 : ((int32_t)1 << 20);
 
     /* 10-11. Demands and surfaces. */
     int32_t d[3];

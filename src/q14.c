@@ -70,6 +70,82 @@ int32_t q_mul32_portable(int32_t a, int32_t b, unsigned shift)
     return qi_mul32_portable(a, b, shift);
 }
 
+int32_t q_mul32x16(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32x16(a, b, shift);
+}
+
+int32_t q_mul32x16_portable(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32x16_portable(a, b, shift);
+}
+
+/* ---- reciprocal square root and reciprocal, without division ------------- */
+
+/* 1/sqrt over [1, 4] in Q15: round(2^15 / sqrt(1 + i/64)) for i = 0..64 (steps
+ * of 1/64 on [1, 2]) and round(2^15 / sqrt(2 + (i - 64)/32)) for i = 65..128
+ * (steps of 1/32 on [2, 4]): power-of-two steps, so the index is a shift, and
+ * linear interpolation is within 3e-5 everywhere. */
+static const uint16_t rsqrt_table_q15[129] = {
+    32768, 32515, 32268, 32026, 31790, 31558, 31332, 31111, 30894, 30682, 30474, 30270, 30070,
+    29874, 29682, 29494, 29309, 29127, 28949, 28774, 28602, 28434, 28268, 28105, 27945, 27787,
+    27632, 27480, 27330, 27183, 27038, 26895, 26755, 26617, 26481, 26346, 26214, 26084, 25956,
+    25830, 25705, 25583, 25462, 25342, 25225, 25109, 24994, 24882, 24770, 24660, 24552, 24445,
+    24339, 24235, 24132, 24031, 23930, 23831, 23733, 23637, 23541, 23447, 23354, 23262, 23170,
+    22992, 22817, 22646, 22479, 22315, 22155, 21999, 21845, 21695, 21548, 21404, 21263, 21124,
+    20988, 20855, 20724, 20596, 20470, 20346, 20225, 20106, 19988, 19873, 19760, 19649, 19539,
+    19431, 19326, 19221, 19119, 19018, 18919, 18821, 18725, 18630, 18536, 18444, 18354, 18264,
+    18176, 18090, 18004, 17920, 17837, 17755, 17674, 17594, 17515, 17438, 17361, 17285, 17211,
+    17137, 17064, 16992, 16921, 16851, 16782, 16714, 16646, 16579, 16514, 16448, 16384};
+
+/* round(2^15 / (1 + i/32)), i = 0..32: 1/m over [1, 2]. */
+static const uint16_t recip_table_q15[33] = {
+    32768, 31775, 30840, 29959, 29127, 28340, 27594, 26887, 26214, 25575, 24966,
+    24385, 23831, 23302, 22795, 22310, 21845, 21400, 20972, 20560, 20165, 19784,
+    19418, 19065, 18725, 18396, 18079, 17772, 17476, 17190, 16913, 16644, 16384};
+
+/* Linear interpolation between table[i] and table[i + 1], frac in Q15. */
+static int32_t table_interp_q15(const uint16_t *table, uint32_t i, uint32_t frac_q15)
+{
+    int32_t t0 = table[i];
+    int32_t t1 = table[i + 1u];
+    return t0 + (((t1 - t0) * (int32_t)frac_q15 + (1 << 14)) >> 15);
+}
+
+int32_t q_rsqrt_q28(int32_t s_q28)
+{
+    s_q28 = q_clamp32(s_q28, (int32_t)1 << 26, ((int32_t)1 << 30) - 1);
+    /* [1/4, 1) is scaled by 4 into [1, 4): the root then halves, y doubles. */
+    unsigned quarter = (s_q28 < ((int32_t)1 << 28)) ? 1u : 0u;
+    s_q28 <<= 2u * quarter;
+    uint32_t u = (uint32_t)s_q28;
+    int32_t y_q28;
+    if (u < ((uint32_t)1 << 29)) { /* [1, 2): steps of 2^22 */
+        uint32_t off = u - ((uint32_t)1 << 28);
+        y_q28 = table_interp_q15(rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) << 13;
+    } else { /* [2, 4): steps of 2^23 */
+        uint32_t off = u - ((uint32_t)1 << 29);
+        y_q28 = table_interp_q15(rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) << 13;
+    }
+    /* Newton for 1/sqrt: y <- y * (3 - s*y^2) / 2 squares the relative error. */
+    int32_t sy2_q28 = qi_mul32_fit(s_q28, qi_mul32_fit(y_q28, y_q28, 28u), 28u);
+    y_q28 = qi_mul32_fit(y_q28, (((int32_t)3 << 28) - sy2_q28) / 2, 28u);
+    return y_q28 << quarter;
+}
+
+int32_t q_recip_q30(int32_t x, unsigned *exponent)
+{
+    uint32_t ux = (x > 0) ? (uint32_t)x : 1u;
+    unsigned lz = qi_clz32(ux);
+    *exponent = 31u - lz;      /* x in [2^e, 2^(e+1)) */
+    uint32_t m_q31 = ux << lz; /* the mantissa in [1, 2), Q31 */
+    int32_t y_q30 = table_interp_q15(recip_table_q15, (m_q31 >> 26) & 31u, (m_q31 >> 11) & 0x7FFFu)
+                    << 15;
+    /* Newton for 1/m: y <- y + y * (1 - m*y) squares the relative error. */
+    int32_t my_q30 = qi_mul32_fit((int32_t)(m_q31 >> 1), y_q30, 30u);
+    return y_q30 + qi_mul32_fit(y_q30, ((int32_t)1 << 30) - my_q30, 30u);
+}
+
 /* ---- division and square roots ------------------------------------------ */
 
 q14_t q14_div(q14_t num, q14_t den)
@@ -158,10 +234,8 @@ void q14_cross3(const q14_t a[3], const q14_t b[3], q14_t out[3])
  * Unit vector of n int32 components (n = 2 or 3), in Q28.
  * The components are block-scaled so that the largest magnitude c lies in
  * [1/2, 1] as Q30 (no bits are lost unless an input exceeds 2^30); the sum of
- * squares S is formed in Q28 with the exact wide multiply; 1/sqrt(S) starts
- * from the 16-bit integer square root and one Newton step
- * y <- y * (3 - S*y^2) / 2 takes its relative error from 2^-15 to about
- * 2^-29; each component is then c_i * y. One division in all.
+ * squares S in [1/4, 3] is formed in Q28 with the exact wide multiply; each
+ * component is then c_i / sqrt(S) with q_rsqrt_q28. No division.
  */
 static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
 {
@@ -189,15 +263,11 @@ static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
             m[i] = (m[i] >> down) + ((m[i] >> (down - 1u)) & 1u);
         }
         m[i] <<= up;
-        sum_q28 += qi_mul32((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
+        sum_q28 += qi_mul32_fit((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
     }
-    /* sqrt(S) * 2^15 from S in Q30, then y0 = 2^32 / that = 1/sqrt(S) in Q17. */
-    uint32_t root_q15 = q_isqrt32_round((uint32_t)sum_q28 << 2);
-    int32_t y_q28 = (int32_t)((0xFFFFFFFFu / root_q15) << 11);
-    int32_t sy2_q28 = qi_mul32(sum_q28, qi_mul32(y_q28, y_q28, 28u), 28u);
-    y_q28 = qi_mul32(y_q28, ((3 << 28) - sy2_q28) / 2, 28u);
+    int32_t y_q28 = q_rsqrt_q28(sum_q28);
     for (unsigned i = 0; i < n; i++) {
-        int32_t u = qi_mul32((int32_t)m[i], y_q28, 30u);
+        int32_t u = qi_mul32_fit((int32_t)m[i], y_q28, 30u);
         out[i] = (v[i] < 0) ? -u : u;
     }
     return 1;

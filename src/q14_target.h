@@ -20,9 +20,9 @@
 /* dsPIC30/33: the DSP engine's signed 16x16 multiply (MUL.SS). */
 #define Q_TARGET_MUL16(a, b) ((int32_t)__builtin_mulss((a), (b)))
 #elif !HT_PORTABLE_ONLY && defined(__ARM_FEATURE_DSP)
-/* Cortex-M4/M7: SMULBB multiplies the bottom halfwords. */
+/* Cortex-M4/M7: SMLABB (bottom halfwords, accumulator 0) is the one-cycle 16x16 multiply. */
 #include <arm_acle.h>
-#define Q_TARGET_MUL16(a, b) ((int32_t)__smulbb((uint32_t)(uint16_t)(a), (uint32_t)(uint16_t)(b)))
+#define Q_TARGET_MUL16(a, b) ((int32_t)__smlabb((int32_t)(a), (int32_t)(b), 0))
 #else
 #define Q_TARGET_MUL16(a, b) ((int32_t)(a) * (int32_t)(b))
 #endif

@@ -162,4 +162,74 @@ static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
 }
 #endif
 
+/*
+ * round(a*b / 2^shift) for an int32 a and an int16 b, ties toward +inf,
+ * saturated, shift in [1, 46]: the same bits as qi_mul32 (the product is
+ * exact before the one rounding), but from two 16x16 partial products, which
+ * is what a core without a wide multiplier wants.
+ */
+static inline int32_t qi_mul32x16_portable(int32_t a, int16_t b, unsigned shift)
+{
+    int32_t a_hi = a >> 16;
+    int32_t a_lo = (int32_t)((uint32_t)a & 0xFFFFu);
+    int32_t p_lo = a_lo * b; /* |.| < 2^31: 65535 * 32768 = 2^31 - 2^15 */
+    /* a*b = hi * 2^16 + lo exactly, 0 <= lo < 2^16 */
+    int32_t hi = a_hi * b + (p_lo >> 16);
+    uint32_t lo = (uint32_t)p_lo & 0xFFFFu;
+    if (shift >= 16u) {
+        if (shift == 16u) {
+            return hi + (int32_t)(lo >> 15);
+        }
+        /* lo / 2^16 < 1 cannot carry past the rounding bit: drop it. */
+        return (hi + (int32_t)(1u << (shift - 17u))) >> (shift - 16u);
+    }
+    unsigned up = 16u - shift;
+    if (hi > (INT32_MAX >> up)) {
+        return INT32_MAX;
+    }
+    if (hi < (INT32_MIN >> up)) {
+        return INT32_MIN;
+    }
+    int32_t r = (int32_t)((lo + (1uL << (shift - 1u))) >> shift);
+    return qi_add_sat32((int32_t)((uint32_t)hi << up), r);
+}
+
+#if Q_TARGET_HAS_MUL64
+static inline int32_t qi_mul32x16(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32(a, b, shift);
+}
+#else
+static inline int32_t qi_mul32x16(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32x16_portable(a, b, shift);
+}
+#endif
+
+/*
+ * The same products where the caller has shown that the result fits in int32
+ * (each use says why): on a core with a wide multiplier the saturation test is
+ * dropped (SMULL, add, shift); the portable forms keep theirs, which cost
+ * little next to the partial products. The rounding is identical.
+ */
+#if Q_TARGET_HAS_MUL64
+static inline int32_t qi_mul32_fit(int32_t a, int32_t b, unsigned shift)
+{
+    return (int32_t)(((int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u))) >> shift);
+}
+static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32_fit(a, b, shift);
+}
+#else
+static inline int32_t qi_mul32_fit(int32_t a, int32_t b, unsigned shift)
+{
+    return qi_mul32_portable(a, b, shift);
+}
+static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
+{
+    return qi_mul32x16_portable(a, b, shift);
+}
+#endif
+
 #endif /* HELICAL_Q_INLINE_H */

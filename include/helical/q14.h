@@ -93,6 +93,13 @@ int32_t q_mul32(int32_t a, int32_t b, unsigned shift);
  * function is the reference both are tested against. */
 int32_t q_mul32_portable(int32_t a, int32_t b, unsigned shift);
 
+/*
+ * q_mul32 for an int16 second factor (a row element, a gyro rate): the same
+ * bits, from two 16x16 partial products; shift in [1, 46].
+ */
+int32_t q_mul32x16(int32_t a, int16_t b, unsigned shift);
+int32_t q_mul32x16_portable(int32_t a, int16_t b, unsigned shift);
+
 /* --- division, reciprocal and square root -------------------------------- */
 
 /*
@@ -106,6 +113,23 @@ q14_t q14_div(q14_t num, q14_t den);
  * INT16_MAX / INT16_MIN; x == 0 gives INT16_MAX.
  */
 q14_t q14_recip(q14_t x);
+
+/*
+ * 1/sqrt(s) in Q28 for s in Q28 within [1/4, 4) (2^26 <= s < 2^30), without
+ * division: linear interpolation in a 129-entry table over [1, 4) (error below
+ * 1e-4) and one Newton step, which leaves a relative error below 2e-8 (the
+ * tests measure it over the whole range). Inputs outside the range are
+ * clamped to it.
+ */
+int32_t q_rsqrt_q28(int32_t s_q28);
+
+/*
+ * Reciprocal of a positive integer x (1 <= x < 2^31), without division:
+ * returns the mantissa m in Q30, 2^29 <= m <= 2^30, and writes the exponent e
+ * so that 1/x = m * 2^-(30 + e), within a relative error of 1e-6. x <= 0 is
+ * treated as 1.
+ */
+int32_t q_recip_q30(int32_t x, unsigned *exponent);
 
 /* floor(sqrt(x)) for every uint32 x; exact. */
 uint16_t q_isqrt32(uint32_t x);
