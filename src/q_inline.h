@@ -87,20 +87,6 @@ static inline u64pair_t u64_add(u64pair_t x, uint32_t hi, uint32_t lo)
     return r;
 }
 
-/* x >> s for s in [1, 62]. */
-static inline u64pair_t u64_shr(u64pair_t x, unsigned s)
-{
-    u64pair_t r;
-    if (s >= 32u) {
-        r.lo = (s == 32u) ? x.hi : (x.hi >> (s - 32u));
-        r.hi = 0u;
-    } else {
-        r.lo = (x.lo >> s) | (x.hi << (32u - s));
-        r.hi = x.hi >> s;
-    }
-    return r;
-}
-
 /* 2^k as a 64-bit pair, k in [0, 62]. */
 static inline u64pair_t u64_pow2(unsigned k)
 {
@@ -110,34 +96,41 @@ static inline u64pair_t u64_pow2(unsigned k)
     return r;
 }
 
+/*
+ * The 64-bit two's-complement product a*b + 2^(shift-1), shifted right
+ * arithmetically by shift, as (hi, lo) halves. The unsigned product of the
+ * bit patterns differs from the signed one only in the high half, by b when
+ * a < 0 and by a when b < 0 (mod 2^32), so no sign-magnitude detour is needed.
+ */
+static inline u64pair_t smul32_round_shift(int32_t a, int32_t b, unsigned shift)
+{
+    uint32_t ua = (uint32_t)a, ub = (uint32_t)b;
+    u64pair_t p = umul32(ua, ub);
+    p.hi -= (a < 0) ? ub : 0u;
+    p.hi -= (b < 0) ? ua : 0u;
+    u64pair_t half = u64_pow2(shift - 1u);
+    p = u64_add(p, half.hi, half.lo);
+    u64pair_t r;
+    int32_t shi = (int32_t)p.hi; /* the conversion keeps the bits (gcc, clang, XC16) */
+    if (shift < 32u) {
+        r.lo = (p.lo >> shift) | (p.hi << (32u - shift));
+        r.hi = (uint32_t)(shi >> shift);
+    } else {
+        r.lo = (uint32_t)(shi >> (shift - 32u));
+        r.hi = (uint32_t)(shi >> 31);
+    }
+    return r;
+}
+
 static inline int32_t qi_mul32_portable(int32_t a, int32_t b, unsigned shift)
 {
-    int negative = (a < 0) != (b < 0);
-    uint32_t ua = (a < 0) ? (0u - (uint32_t)a) : (uint32_t)a;
-    uint32_t ub = (b < 0) ? (0u - (uint32_t)b) : (uint32_t)b;
-    u64pair_t p = umul32(ua, ub);
-    if (ua == 0u || ub == 0u) {
-        negative = 0;
+    u64pair_t r = smul32_round_shift(a, b, shift);
+    int32_t lo = (int32_t)r.lo;
+    /* it fits iff the high half is the sign extension of the low half */
+    if ((int32_t)r.hi != (lo >> 31)) {
+        return ((int32_t)r.hi < 0) ? INT32_MIN : INT32_MAX;
     }
-    /* Ties toward +inf: a positive product adds half, a negative product
-     * adds half less one before the magnitude is floored. */
-    u64pair_t half = u64_pow2(shift - 1u);
-    if (negative) {
-        half = (half.lo == 0u) ? (u64pair_t){half.hi - 1u, 0xFFFFFFFFu}
-                               : (u64pair_t){half.hi, half.lo - 1u};
-    }
-    p = u64_add(p, half.hi, half.lo);
-    p = u64_shr(p, shift);
-    if (negative) {
-        if (p.hi != 0u || p.lo > 0x80000000u) {
-            return INT32_MIN;
-        }
-        return (int32_t)(0u - p.lo);
-    }
-    if (p.hi != 0u || p.lo > (uint32_t)INT32_MAX) {
-        return INT32_MAX;
-    }
-    return (int32_t)p.lo;
+    return lo;
 }
 
 #if Q_TARGET_HAS_MUL64
@@ -224,11 +217,21 @@ static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 #else
 static inline int32_t qi_mul32_fit(int32_t a, int32_t b, unsigned shift)
 {
-    return qi_mul32_portable(a, b, shift);
+    return (int32_t)smul32_round_shift(a, b, shift).lo;
 }
 static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 {
-    return qi_mul32x16_portable(a, b, shift);
+    /* the two-partial-product form of qi_mul32x16_portable, without its
+     * saturation test */
+    int32_t a_hi = a >> 16;
+    int32_t p_lo = (int32_t)((uint32_t)a & 0xFFFFu) * b;
+    int32_t hi = a_hi * b + (p_lo >> 16);
+    uint32_t lo = (uint32_t)p_lo & 0xFFFFu;
+    if (shift >= 16u) {
+        return (shift == 16u) ? hi + (int32_t)(lo >> 15)
+                              : (hi + (int32_t)(1u << (shift - 17u))) >> (shift - 16u);
+    }
+    return (int32_t)(((uint32_t)hi << (16u - shift)) + ((lo + (1u << (shift - 1u))) >> shift));
 }
 #endif
 
