@@ -1,0 +1,143 @@
+/*
+ * libFuzzer target: arbitrary bytes -> a parameter set and one step's input.
+ * Every parameter set that ht_init accepts and every input must give
+ * surfaces in [-1, 1], a unit target tilt, the same output twice, and agree
+ * with the double reference away from the spec's branch boundaries.
+ */
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "helical/helical_turn.h"
+#include "ht_reference.h"
+
+typedef struct {
+    const uint8_t *p;
+    size_t n;
+} bytes_t;
+
+static uint32_t take(bytes_t *b, unsigned count)
+{
+    uint32_t v = 0;
+    for (unsigned i = 0; i < count; i++) {
+        v = (v << 8) | (b->n ? (b->n--, *b->p++) : 0u);
+    }
+    return v;
+}
+
+static int32_t take_i32(bytes_t *b)
+{
+    return (int32_t)take(b, 4);
+}
+
+static int16_t take_i16(bytes_t *b)
+{
+    return (int16_t)(uint16_t)take(b, 2);
+}
+
+/* A gain in [0, 64] most of the time, anything now and then. */
+static q16_t take_gain(bytes_t *b)
+{
+    uint32_t raw = take(b, 4);
+    return (raw & 0x80000000u) ? (int32_t)raw : (q16_t)(raw % (64u * 65536u + 1u));
+}
+
+static void check(int ok)
+{
+    if (!ok) {
+        abort();
+    }
+}
+
+static void fuzz_params(bytes_t *b, ht_params_t *p)
+{
+    q16_t *gains[9] = {&p->kp_aileron,  &p->kp_elevator,  &p->kp_rudder,
+                       &p->kff_aileron, &p->kff_elevator, &p->kff_rudder,
+                       &p->kd_aileron,  &p->kd_elevator,  &p->kd_rudder};
+    for (int i = 0; i < 9; i++) {
+        *gains[i] = take_gain(b);
+    }
+    p->v_min_cm_s = (int32_t)(take(b, 2) % 40000u) - 1000;
+    p->v_ref_cm_s = p->v_min_cm_s + (int32_t)(take(b, 2) % 34000u) - 500;
+    p->schedule = (uint8_t)(take(b, 1) % 3u);
+    p->max_tilt = (q16_t)(take(b, 3) % (9u * 65536u)) - 1000;
+    p->pitch_mode = (uint8_t)(take(b, 1) % 3u);
+}
+
+/* |core - reference| in Q14 LSB, the reference clamped to the Q14 range the
+ * core documents (an unnormalized row can make a cross product exceed 2). */
+static double err_q14(q14_t core, double ref)
+{
+    double r = ref > 32767.0 / 16384.0 ? 32767.0 / 16384.0 : (ref < -2.0 ? -2.0 : ref);
+    return fabs(core / 16384.0 - r) * 16384.0;
+}
+
+static int near_boundary(const ht_ref_output_t *r, const ht_ref_params_t *p)
+{
+    const double eps = 1e-4;
+    if (fabs(r->ratio_margin) < eps || fabs(r->roll_dot) < eps ||
+        (r->roll_dot <= 0 && fabs(r->roll_cross) < eps)) {
+        return 1;
+    }
+    return p->pitch_mode == HT_PITCH_EARTH_FRAME &&
+           (fabs(r->pitch_agree) < eps || (r->pitch_agree <= 0 && fabs(r->pitch_raw) < eps));
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    bytes_t b = {data, size};
+    ht_params_t params = HT_PARAMS_DEFAULT;
+    fuzz_params(&b, &params);
+    ht_controller_t ctl;
+    ht_param_id_t bad = HT_P_NONE;
+    ht_status_t st = ht_init(&ctl, &params, &bad);
+    if (st != HT_OK) {
+        /* a refusal always names a field, and the controller gives zeros */
+        check(st == HT_ERR_PARAM && bad != HT_P_NONE && ht_param_name(bad)[0] != '\0');
+        check(ctl.ready == 0u);
+        return 0;
+    }
+    ht_input_t in;
+    in.x = take_i16(&b);
+    in.y = take_i16(&b);
+    in.z = take_i16(&b);
+    in.turn_rate_rad_s = take_i16(&b);
+    in.pitch_ratio = take_i32(&b);
+    in.airspeed_cm_s = take_i16(&b);
+    for (int i = 0; i < 3; i++) {
+        in.gyro_rad_s[i] = take_i16(&b);
+    }
+    in.inverted = (uint8_t)take(&b, 1);
+
+    ht_output_t o1, o2;
+    ht_step(&ctl, &in, &o1);
+    ht_step(&ctl, &in, &o2);
+    check(o1.aileron == o2.aileron && o1.elevator == o2.elevator && o1.rudder == o2.rudder &&
+          o1.flags == o2.flags && o1.pitch_error == o2.pitch_error);
+    check(o1.aileron >= -16384 && o1.aileron <= 16384);
+    check(o1.elevator >= -16384 && o1.elevator <= 16384);
+    check(o1.rudder >= -16384 && o1.rudder <= 16384);
+    double n = sqrt((double)o1.tilt_x * o1.tilt_x + (double)o1.tilt_y * o1.tilt_y +
+                    (double)o1.tilt_z * o1.tilt_z);
+    check(fabs(n - 16384.0) <= 3.0);
+
+    /* Against the reference: the worst errors the sweep allows, with room for
+     * gains and scales far beyond the sweep's (an error grows with them). */
+    ht_ref_params_t rp;
+    ht_ref_input_t ri;
+    ht_ref_output_t ro;
+    ht_ref_params_from_controller(&ctl, &rp);
+    ht_ref_input_from_fixed(&in, &ri);
+    ht_ref_step(&rp, &ri, &ro);
+    if (!near_boundary(&ro, &rp)) {
+        check(err_q14(o1.roll_error, ro.roll_error) <= 1.0);
+        check(err_q14(o1.pitch_body_x, ro.pitch_body_x) <= 1.0);
+        check(err_q14(o1.pitch_body_z, ro.pitch_body_z) <= 1.0);
+        check(err_q14(o1.tilt_x, ro.tilt[0]) <= 1.0);
+        check(err_q14(o1.tilt_y, ro.tilt[1]) <= 1.0);
+        check(err_q14(o1.tilt_z, ro.tilt[2]) <= 1.0);
+    }
+    return 0;
+}
