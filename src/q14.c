@@ -288,29 +288,22 @@ int q_unit3_q28(const int32_t v[3], int32_t out[3])
     return unit_n_q28(v, 3u, out);
 }
 
-static int unit_n(const int32_t *v, unsigned n, q16_t *out)
-{
-    int32_t u[3];
-    int ok = unit_n_q28(v, n, u);
-    for (unsigned i = 0; i < n; i++) {
-        out[i] = qi_rshift_round(u[i], 12u);
-    }
-    return ok;
-}
-
 int q_unit2_q16(int32_t a, int32_t b, q16_t *ua, q16_t *ub)
 {
-    int32_t v[2] = {a, b};
-    q16_t u[2];
-    int ok = unit_n(v, 2u, u);
-    *ua = u[0];
-    *ub = u[1];
+    int32_t u[2];
+    int ok = q_unit2_q28(a, b, &u[0], &u[1]);
+    *ua = qi_rshift_round(u[0], 12u);
+    *ub = qi_rshift_round(u[1], 12u);
     return ok;
 }
 
 int q_unit3_q16(const int32_t v[3], q16_t out[3])
 {
-    return unit_n(v, 3u, out);
+    int ok = unit_n_q28(v, 3u, out);
+    for (unsigned i = 0; i < 3u; i++) {
+        out[i] = qi_rshift_round(out[i], 12u);
+    }
+    return ok;
 }
 
 q16_t q14_norm2_q16(q14_t a, q14_t b)
