@@ -11,7 +11,8 @@ uint16_t hil_crc16(uint16_t crc, const uint8_t *data, size_t n)
     for (size_t i = 0; i < n; i++) {
         crc ^= (uint16_t)((uint16_t)data[i] << 8);
         for (unsigned bit = 0; bit < 8u; bit++) {
-            crc = (crc & 0x8000u) ? (uint16_t)((crc << 1) ^ 0x1021u) : (uint16_t)(crc << 1);
+            crc = (crc & 0x8000u) ? (uint16_t)(((unsigned)crc << 1) ^ 0x1021u)
+                                  : (uint16_t)((unsigned)crc << 1);
         }
     }
     return crc;
