@@ -74,18 +74,15 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
 static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int32_t tilt[3],
                         int32_t *t_q28)
 {
-    int32_t x1, z1, y, t;
-    (void)q_unit2_q28(-ratio_q16, Q16_ONE, &x1, &z1);
-    q16_t p = (pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16;
-    (void)q_unit2_q28(p, Q16_ONE, &y, &t);
-    tilt[0] = qi_mul32_fit(x1, t, 28u);
-    tilt[1] = y;
-    tilt[2] = qi_mul32_fit(z1, t, 28u);
-    if (inverted) {
-        tilt[0] = -tilt[0];
-        tilt[2] = -tilt[2];
-    }
-    *t_q28 = t;
+    int32_t roll[2] = {-ratio_q16, Q16_ONE}; /* becomes (X1, Z1) */
+    int32_t pitch[2] = {(pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16, Q16_ONE}; /* (Yt, t) */
+    (void)q_unit_q28(roll, 2u, roll);
+    (void)q_unit_q28(pitch, 2u, pitch);
+    int32_t sign = inverted ? -1 : 1;
+    tilt[0] = sign * qi_mul32_fit(roll[0], pitch[1], 28u);
+    tilt[1] = pitch[0];
+    tilt[2] = sign * qi_mul32_fit(roll[1], pitch[1], 28u);
+    *t_q28 = pitch[1];
 }
 
 /* a*b - c*d with a, c in Q14 (the actual row) and b, d in Q28: result Q28. */
@@ -111,17 +108,18 @@ static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *
 static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], int32_t t_q28,
                                  int32_t body[3], uint8_t *flags)
 {
-    int32_t ux, uz, a;
-    if (q_unit2_q28(in->x, in->z, &ux, &uz)) {
+    int32_t u[2] = {in->x, in->z}; /* becomes [X, Z] / a */
+    int32_t a;
+    if (q_unit_q28(u, 2u, u)) {
         /* [X, Z].u = |[X, Z]| <= 2.83: each product below 2^30 */
-        a = qi_mul32x16_fit(ux, in->x, 14u) + qi_mul32x16_fit(uz, in->z, 14u);
+        a = qi_mul32x16_fit(u[0], in->x, 14u) + qi_mul32x16_fit(u[1], in->z, 14u);
     } else {
         /* Fuselage vertical: [-Z, 0, X] / a has no direction. Define it as the
          * upright one, [-1, 0, 0], so the whole pitch error goes to the
          * elevator: finite, bounded by |pe|, deterministic. */
         *flags |= HT_F_FUSELAGE_VERTICAL;
-        ux = 0;
-        uz = Q28_ONE;
+        u[0] = 0;
+        u[1] = Q28_ONE;
         a = 0;
     }
     /* |Yt * a| <= 2.83 * 2^28 and |Y * t| <= 2^29: the sums stay below 2^31 */
@@ -131,8 +129,8 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
         *flags |= HT_F_PITCH_BEYOND_90;
         pe = sign_unit_q28(pe);
     }
-    body[0] = qi_mul32_fit(-pe, uz, 28u);
-    body[2] = qi_mul32_fit(pe, ux, 28u);
+    body[0] = qi_mul32_fit(-pe, u[1], 28u);
+    body[2] = qi_mul32_fit(pe, u[0], 28u);
     return pe;
 }
 
@@ -176,7 +174,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         *out = zero;
         return;
     }
-    ht_output_t o; /* every field is written below */
+    ht_output_t *o = out; /* written field by field: no copy of the struct on the stack */
     uint8_t flags = 0u;
 
     /* 1. Airspeed floor and tilt limit. */
@@ -214,28 +212,27 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     int32_t s_p_q20 = ctl->schedule ? s_ff_q20 : ((int32_t)1 << 20);
 
     /* 10-11. Demands and surfaces. */
-    int32_t d[3];
-    for (unsigned i = 0; i < 3u; i++) {
-        d[i] = axis_demand(ctl, i, s_p_q20, s_ff_q20, e[i], rate_d[i], in->gyro_rad_s[i]);
-    }
-    o.aileron = surface_from_q20(d[1], &flags);
-    o.elevator = surface_from_q20(qi_sub_sat32(0, d[0]), &flags);
-    o.rudder = surface_from_q20(d[2], &flags);
+    o->elevator = surface_from_q20(qi_sub_sat32(0, axis_demand(ctl, 0u, s_p_q20, s_ff_q20, e[0],
+                                                               rate_d[0], in->gyro_rad_s[0])),
+                                   &flags);
+    o->aileron = surface_from_q20(
+        axis_demand(ctl, 1u, s_p_q20, s_ff_q20, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
+    o->rudder = surface_from_q20(
+        axis_demand(ctl, 2u, s_p_q20, s_ff_q20, e[2], rate_d[2], in->gyro_rad_s[2]), &flags);
 
-    o.turn_rate_used_rad_s = q11_from_q20(turn.omega_q20);
-    o.tilt_ratio = turn.ratio_q16;
-    o.tilt_x = q14_from_q28(tilt[0]);
-    o.tilt_y = q14_from_q28(tilt[1]);
-    o.tilt_z = q14_from_q28(tilt[2]);
-    o.rate_x_rad_s = q11_from_q20(rate_d[0]);
-    o.rate_y_rad_s = q11_from_q20(rate_d[1]);
-    o.rate_z_rad_s = q11_from_q20(rate_d[2]);
-    o.roll_dot = q14_from_q28(roll_dot);
-    o.roll_cross = q14_from_q28(roll_cross);
-    o.roll_error = q14_from_q28(e[1]);
-    o.pitch_error = q14_from_q28(pe);
-    o.pitch_body_x = q14_from_q28(e[0]);
-    o.pitch_body_z = q14_from_q28(e[2]);
-    o.flags = flags;
-    *out = o;
+    o->turn_rate_used_rad_s = q11_from_q20(turn.omega_q20);
+    o->tilt_ratio = turn.ratio_q16;
+    o->tilt_x = q14_from_q28(tilt[0]);
+    o->tilt_y = q14_from_q28(tilt[1]);
+    o->tilt_z = q14_from_q28(tilt[2]);
+    o->rate_x_rad_s = q11_from_q20(rate_d[0]);
+    o->rate_y_rad_s = q11_from_q20(rate_d[1]);
+    o->rate_z_rad_s = q11_from_q20(rate_d[2]);
+    o->roll_dot = q14_from_q28(roll_dot);
+    o->roll_cross = q14_from_q28(roll_cross);
+    o->roll_error = q14_from_q28(e[1]);
+    o->pitch_error = q14_from_q28(pe);
+    o->pitch_body_x = q14_from_q28(e[0]);
+    o->pitch_body_z = q14_from_q28(e[2]);
+    o->flags = flags;
 }

@@ -105,7 +105,8 @@ static const uint16_t recip_table_q15[33] = {
     19418, 19065, 18725, 18396, 18079, 17772, 17476, 17190, 16913, 16644, 16384};
 
 /* Linear interpolation between table[i] and table[i + 1], frac in Q15. */
-static int32_t table_interp_q15(const uint16_t *table, uint32_t i, uint32_t frac_q15)
+static QI_ALWAYS_INLINE int32_t table_interp_q15(const uint16_t *table, uint32_t i,
+                                                 uint32_t frac_q15)
 {
     int32_t t0 = table[i];
     int32_t t1 = table[i + 1u];
@@ -237,15 +238,12 @@ void q14_cross3(const q14_t a[3], const q14_t b[3], q14_t out[3])
  * squares S in [1/4, 3] is formed in Q28 with the exact wide multiply; each
  * component is then c_i / sqrt(S) with q_rsqrt_q28. No division.
  */
-static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
+int q_unit_q28(const int32_t *v, unsigned n, int32_t *out)
 {
-    uint32_t m[3];
     uint32_t big = 0u;
     for (unsigned i = 0; i < n; i++) {
-        m[i] = (v[i] < 0) ? (0u - (uint32_t)v[i]) : (uint32_t)v[i];
-        if (m[i] > big) {
-            big = m[i];
-        }
+        uint32_t m = (v[i] < 0) ? (0u - (uint32_t)v[i]) : (uint32_t)v[i];
+        big = (m > big) ? m : big;
     }
     if (big == 0u) {
         for (unsigned i = 0; i < n; i++) {
@@ -253,22 +251,24 @@ static int unit_n_q28(const int32_t *v, unsigned n, int32_t *out)
         }
         return 0;
     }
-    /* bring the top bit of big to bit 29 */
+    /* bring the top bit of big to bit 29; out holds the scaled components
+     * (no scratch array: the control tick's stack is counted in bytes) */
     unsigned lz = qi_clz32(big);
     unsigned down = (lz < 2u) ? 2u - lz : 0u;
     unsigned up = (lz > 2u) ? lz - 2u : 0u;
     int32_t sum_q28 = 0;
     for (unsigned i = 0; i < n; i++) {
+        uint32_t m = (v[i] < 0) ? (0u - (uint32_t)v[i]) : (uint32_t)v[i];
         if (down > 0u) {
-            m[i] = (m[i] >> down) + ((m[i] >> (down - 1u)) & 1u);
+            m = (m >> down) + ((m >> (down - 1u)) & 1u);
         }
-        m[i] <<= up;
-        sum_q28 += qi_mul32_fit((int32_t)m[i], (int32_t)m[i], 32u); /* <= 3 * 2^28 */
+        int32_t c = (int32_t)(m << up); /* |c| <= 2^30 */
+        out[i] = (v[i] < 0) ? -c : c;
+        sum_q28 += qi_mul32_fit(c, c, 32u); /* <= 3 * 2^28 */
     }
     int32_t y_q28 = q_rsqrt_q28(sum_q28);
     for (unsigned i = 0; i < n; i++) {
-        int32_t u = qi_mul32_fit((int32_t)m[i], y_q28, 30u);
-        out[i] = (v[i] < 0) ? -u : u;
+        out[i] = qi_mul32_fit(out[i], y_q28, 30u);
     }
     return 1;
 }
@@ -277,7 +277,7 @@ int q_unit2_q28(int32_t a, int32_t b, int32_t *ua, int32_t *ub)
 {
     int32_t v[2] = {a, b};
     int32_t u[2];
-    int ok = unit_n_q28(v, 2u, u);
+    int ok = q_unit_q28(v, 2u, u);
     *ua = u[0];
     *ub = u[1];
     return ok;
@@ -285,7 +285,7 @@ int q_unit2_q28(int32_t a, int32_t b, int32_t *ua, int32_t *ub)
 
 int q_unit3_q28(const int32_t v[3], int32_t out[3])
 {
-    return unit_n_q28(v, 3u, out);
+    return q_unit_q28(v, 3u, out);
 }
 
 int q_unit2_q16(int32_t a, int32_t b, q16_t *ua, q16_t *ub)
@@ -299,7 +299,7 @@ int q_unit2_q16(int32_t a, int32_t b, q16_t *ua, q16_t *ub)
 
 int q_unit3_q16(const int32_t v[3], q16_t out[3])
 {
-    int ok = unit_n_q28(v, 3u, out);
+    int ok = q_unit_q28(v, 3u, out);
     for (unsigned i = 0; i < 3u; i++) {
         out[i] = qi_rshift_round(out[i], 12u);
     }
@@ -326,7 +326,7 @@ static int normalize_q14(q14_t *v, unsigned n)
     for (unsigned i = 0; i < n; i++) {
         w[i] = v[i];
     }
-    int ok = unit_n_q28(w, n, u);
+    int ok = q_unit_q28(w, n, u);
     for (unsigned i = 0; i < n; i++) {
         v[i] = qi_sat16(qi_rshift_round(u[i], 14u));
     }

@@ -28,9 +28,8 @@
 #endif
 
 #if !HT_PORTABLE_ONLY && defined(__ARM_FEATURE_SAT)
-/* Cortex-M3/M4: SSAT #16. */
-#include <arm_acle.h>
-#define Q_TARGET_SAT16(x) ((int16_t)__ssat((x), 16))
+/* Cortex-M3/M4: SSAT #16 (the builtin: arm_acle.h's __ssat trips -Wsign-conversion). */
+#define Q_TARGET_SAT16(x) ((int16_t)(int32_t)__builtin_arm_ssat((int32_t)(x), 16))
 #else
 #define Q_TARGET_SAT16(x)                                                                          \
     ((int16_t)((x) > INT16_MAX ? INT16_MAX : ((x) < INT16_MIN ? INT16_MIN : (x))))

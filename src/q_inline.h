@@ -11,6 +11,13 @@
 
 #include "q14_target.h"
 
+/* Where a call's frame would count against the control tick's stack. */
+#if defined(__GNUC__) || defined(__clang__)
+#define QI_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define QI_ALWAYS_INLINE inline
+#endif
+
 static inline int16_t qi_sat16(int32_t x)
 {
     return Q_TARGET_SAT16(x);

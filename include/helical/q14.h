@@ -170,6 +170,9 @@ int q_unit3_q16(const int32_t v[3], q16_t out[3]);
 int q_unit2_q28(int32_t a, int32_t b, int32_t *ua, int32_t *ub);
 int q_unit3_q28(const int32_t v[3], int32_t out[3]);
 
+/* The same for n = 2 or 3 components in arrays; out may be v itself. */
+int q_unit_q28(const int32_t *v, unsigned n, int32_t *out);
+
 /*
  * Euclidean length of (a, b) with a and b in Q14, as Q16 (two guard bits):
  * the correctly rounded root on the Q16 grid when a^2 + b^2 < 1/4, on the Q15
