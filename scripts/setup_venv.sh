@@ -1,5 +1,37 @@
 #!/usr/bin/env bash
-# Creates .venv with the SIL harness's pinned dependencies (idempotent).
+# Creates .venv at the repo root with the SIL harness's pinned dependencies
+# (sil/requirements.lock, from PyPI) and the harness itself (sil/, editable).
+# Idempotent: does nothing when .venv is already in step with the lock file
+# and sil/pyproject.toml. Use PYTHON=/path/to/python3.11+ to choose the
+# interpreter.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "setup_venv: nothing to install yet"
+
+PY="${PYTHON:-python3}"
+VENV=.venv
+STAMP="$VENV/.helical_sil_stamp"
+want="$(cat sil/requirements.lock sil/pyproject.toml | sha256sum | cut -d' ' -f1)"
+
+if [[ -x "$VENV/bin/python" && -f "$STAMP" && "$(cat "$STAMP")" == "$want" ]]; then
+    echo "setup_venv: $VENV is up to date"
+    exit 0
+fi
+
+if ! command -v "$PY" >/dev/null 2>&1; then
+    echo "setup_venv: $PY not found; install Python >= 3.11 or set PYTHON=" >&2
+    exit 1
+fi
+if ! "$PY" -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else 1)'; then
+    echo "setup_venv: $PY is $("$PY" -V 2>&1); the SIL harness needs Python >= 3.11" >&2
+    exit 1
+fi
+
+if [[ ! -x "$VENV/bin/python" ]]; then
+    echo "setup_venv: creating $VENV with $("$PY" -V 2>&1)"
+    "$PY" -m venv "$VENV"
+fi
+echo "setup_venv: installing sil/requirements.lock and the sil package"
+"$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r sil/requirements.lock
+"$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --no-deps -e sil
+echo "$want" > "$STAMP"
+echo "setup_venv: done ($VENV/bin/python)"

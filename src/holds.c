@@ -48,8 +48,8 @@ ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p)
     if (!gain_ok(p->kp_pitch_per_m) || !gain_ok(p->ki_pitch_per_m_s) ||
         !gain_ok(p->kd_pitch_per_m_s) || p->max_pitch <= 0 || p->max_pitch > HOLD_RATIO_MAX_Q16 ||
         p->max_integral_pitch < 0 || p->max_integral_pitch > HOLD_RATIO_MAX_Q16 ||
-        p->max_error_cm < 100 || p->max_error_cm > HOLD_ERROR_MAX_CM || p->rate_hz < 1u ||
-        p->rate_hz > HOLD_RATE_MAX_HZ) {
+        p->max_error_cm < 100 || p->max_error_cm > HOLD_ERROR_MAX_CM || p->integral_band_cm < 0 ||
+        p->integral_band_cm > p->max_error_cm || p->rate_hz < 1u || p->rate_hz > HOLD_RATE_MAX_HZ) {
         return HT_HOLD_ERR_PARAM;
     }
     return HT_HOLD_OK;
@@ -91,7 +91,8 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     const int32_t before_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
     const int saturated_high = before_q16 >= p->max_pitch;
     const int saturated_low = before_q16 <= -p->max_pitch;
-    if (!((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
+    const int in_band = err_cm <= p->integral_band_cm && err_cm >= -p->integral_band_cm;
+    if (in_band && !((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
         integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
     }
     s->integral_q20[idx] = integral_q20;

@@ -37,10 +37,10 @@ os_status_t os_channel_check(const os_channel_t *ch)
     if (ch == NULL) {
         return OS_ERR_NULL;
     }
-    if (ch->function >= (uint8_t)OS_FN_COUNT || !pulse_ok(ch->centre_us) ||
-        !pulse_ok(ch->min_us) || !pulse_ok(ch->max_us) || !pulse_ok(ch->failsafe_us) ||
-        ch->min_us > ch->max_us || ch->travel_us > OS_TRAVEL_MAX_US ||
-        ch->trim_us < -OS_TRIM_MAX_US || ch->trim_us > OS_TRIM_MAX_US) {
+    if (ch->function >= (uint8_t)OS_FN_COUNT || !pulse_ok(ch->centre_us) || !pulse_ok(ch->min_us) ||
+        !pulse_ok(ch->max_us) || !pulse_ok(ch->failsafe_us) || ch->min_us > ch->max_us ||
+        ch->travel_us > OS_TRAVEL_MAX_US || ch->trim_us < -OS_TRIM_MAX_US ||
+        ch->trim_us > OS_TRIM_MAX_US) {
         return OS_ERR_CONFIG;
     }
     return OS_OK;

@@ -50,10 +50,14 @@ typedef struct {
     uint16_t control_hz;     /* [BOARD_CONTROL_HZ_MIN, BOARD_CONTROL_HZ_MAX] */
     uint16_t servo_frame_hz; /* [BOARD_SERVO_HZ_MIN, BOARD_SERVO_HZ_MAX] */
     uint16_t servo_start_us; /* pulse every servo channel emits from init until the
-                                first commit (e.g. 1500 us neutral) */
+                                first commit; 0 = no pulses at all (the default: an
+                                ESC then sees no signal rather than a wrong throttle) */
 } board_config_t;
 
-#define BOARD_CONFIG_DEFAULT {BOARD_CONTROL_HZ_DEFAULT, BOARD_SERVO_HZ_DEFAULT, 1500u}
+#define BOARD_CONFIG_DEFAULT                                                                       \
+    {                                                                                              \
+        BOARD_CONTROL_HZ_DEFAULT, BOARD_SERVO_HZ_DEFAULT, 0u                                       \
+    }
 
 /*
  * The sensor seam. A board with an IMU and a DCM fills this from them; the
@@ -61,7 +65,7 @@ typedef struct {
  * and a simulator link can fill it from a UART. Formats as ht_input_t.
  */
 typedef struct {
-    int16_t down_q14[3];     /* DCM bottom row (earth-down in body axes), Q14 */
+    int16_t down_q14[3];       /* DCM bottom row (earth-down in body axes), Q14 */
     int16_t gyro_q11_rad_s[3]; /* body rates about X, Y, Z, Q11 rad/s */
     int16_t airspeed_cm_s;
 } board_sensors_t;
@@ -69,10 +73,11 @@ typedef struct {
 /* Why the firmware entered failsafe (passed to board_failsafe). */
 typedef enum {
     BOARD_FS_NONE = 0,
-    BOARD_FS_RC_LOST = 1,      /* no valid RC frame for the configured time */
-    BOARD_FS_SENSORS = 2,      /* the sensor seam returned no data */
-    BOARD_FS_CONFIG = 3,       /* the output-stage or law configuration was refused */
-    BOARD_FS_OVERRUN = 4       /* the control tick missed its deadline */
+    BOARD_FS_RC_LOST = 1, /* no valid RC frame for the configured time */
+    BOARD_FS_SENSORS = 2, /* the sensor seam returned no data */
+    BOARD_FS_CONFIG = 3   /* the output-stage or law configuration was refused:
+                             the loop writes no pulses at all; the board should
+                             silence its servo outputs */
 } board_failsafe_t;
 
 /*

@@ -22,13 +22,13 @@ extern "C" {
 
 /* What an output channel drives, i.e. which mix feeds it. */
 typedef enum {
-    OS_FN_NONE = 0,     /* unused: command 0 (the channel sits at centre + trim) */
-    OS_FN_AILERON = 1,  /* aileron, + = roll right */
-    OS_FN_AILERON2 = 2, /* second aileron servo: the same roll command; a
-                           mirror-mounted servo sets `reversed` */
-    OS_FN_ELEVATOR = 3, /* + = nose up */
-    OS_FN_RUDDER = 4,   /* + = nose right */
-    OS_FN_THROTTLE = 5, /* [0, 1]: 0 = idle */
+    OS_FN_NONE = 0,         /* unused: command 0 (the channel sits at centre + trim) */
+    OS_FN_AILERON = 1,      /* aileron, + = roll right */
+    OS_FN_AILERON2 = 2,     /* second aileron servo: the same roll command; a
+                               mirror-mounted servo sets `reversed` */
+    OS_FN_ELEVATOR = 3,     /* + = nose up */
+    OS_FN_RUDDER = 4,       /* + = nose right */
+    OS_FN_THROTTLE = 5,     /* [0, 1]: 0 = idle */
     OS_FN_VTAIL_LEFT = 6,   /* left ruddervator  = pitch + yaw */
     OS_FN_VTAIL_RIGHT = 7,  /* right ruddervator = pitch - yaw */
     OS_FN_ELEVON_LEFT = 8,  /* left elevon  = pitch - roll */

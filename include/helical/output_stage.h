@@ -37,12 +37,12 @@ extern "C" {
 #define OS_TRIM_MAX_US   500   /* trim in [-500, +500] us */
 
 typedef struct {
-    uint8_t function;     /* os_function_t */
-    uint8_t reversed;     /* nonzero: the command is negated before scaling */
-    uint16_t centre_us;   /* pulse at command 0 (throttle: idle) */
-    int16_t trim_us;      /* added to the centre */
-    uint16_t travel_us;   /* pulse change for a full command (1.0) */
-    uint16_t min_us;      /* end points: the output never leaves [min_us, max_us] */
+    uint8_t function;   /* os_function_t */
+    uint8_t reversed;   /* nonzero: the command is negated before scaling */
+    uint16_t centre_us; /* pulse at command 0 (throttle: idle) */
+    int16_t trim_us;    /* added to the centre */
+    uint16_t travel_us; /* pulse change for a full command (1.0) */
+    uint16_t min_us;    /* end points: the output never leaves [min_us, max_us] */
     uint16_t max_us;
     uint16_t failsafe_us; /* pulse in failsafe, also held within the end points */
 } os_channel_t;

@@ -1,0 +1,107 @@
+/*
+ * startup_stm32f405.c - the vector table and the reset handler: copy .data
+ * from flash, zero .bss, call main. No FPU set-up: the whole image is built
+ * soft-float (integer-only code, so no lazy FPU stacking on interrupts).
+ */
+#include <stdint.h>
+
+/* Linker-script symbols (stm32f405.ld). */
+extern uint32_t _sidata[], _sdata[], _edata[], _sbss[], _ebss[], _estack[];
+
+int main(void);
+void Reset_Handler(void);
+void Default_Handler(void);
+
+/* The handlers a board may define; everything else traps in Default_Handler. */
+void NMI_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void HardFault_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void MemManage_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void BusFault_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void UsageFault_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void SVC_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void DebugMon_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void PendSV_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
+
+/* 16 system exceptions (the first is the initial stack pointer) and the 82
+ * STM32F405 interrupt lines (RM0090 table 61: positions 0..81). A struct
+ * keeps the stack pointer a data pointer and the rest function pointers. */
+#define STM32F405_IRQ_COUNT 82
+
+typedef void (*vector_t)(void);
+
+typedef struct {
+    uint32_t *initial_sp;
+    vector_t system[15];
+    vector_t irq[STM32F405_IRQ_COUNT];
+} vector_table_t;
+
+__attribute__((section(".isr_vector"), used)) const vector_table_t vector_table = {
+    _estack,
+    {
+        Reset_Handler,
+        NMI_Handler,
+        HardFault_Handler,
+        MemManage_Handler,
+        BusFault_Handler,
+        UsageFault_Handler,
+        0,
+        0,
+        0,
+        0,
+        SVC_Handler,
+        DebugMon_Handler,
+        0,
+        PendSV_Handler,
+        SysTick_Handler,
+    },
+    /* No peripheral interrupt is enabled by this image; should one fire,
+     * it stops in Default_Handler where a debugger can see it. */
+    {
+#define D4 Default_Handler, Default_Handler, Default_Handler, Default_Handler
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        D4,
+        Default_Handler,
+        Default_Handler
+#undef D4
+    },
+};
+
+void Reset_Handler(void)
+{
+    const uint32_t *src = _sidata;
+    for (uint32_t *dst = _sdata; dst < _edata;) {
+        *dst++ = *src++;
+    }
+    for (uint32_t *dst = _sbss; dst < _ebss;) {
+        *dst++ = 0u;
+    }
+    (void)main();
+    for (;;) {
+        /* main does not return; if it does, stay here */
+    }
+}
+
+void Default_Handler(void)
+{
+    for (;;) {
+    }
+}

@@ -1,0 +1,31 @@
+/*
+ * stm32f4_gpio.c - see stm32f4_gpio.h.
+ */
+#include "stm32f4_gpio.h"
+
+#include <stddef.h>
+
+void stm32_gpio_set_af(stm32_gpio_t *port, uint8_t pin, uint8_t af)
+{
+    if (port == NULL || pin > 15u || af > 15u) {
+        return;
+    }
+    /* AFR first, so the pin never drives a wrong function once in AF mode. */
+    const unsigned reg = pin / 8u;
+    const unsigned af_shift = 4u * (pin % 8u);
+    port->AFR[reg] = (port->AFR[reg] & ~(0xFu << af_shift)) | ((uint32_t)af << af_shift);
+    const unsigned mode_shift = 2u * pin;
+    port->MODER = (port->MODER & ~(3u << mode_shift)) | (GPIO_MODER_AF << mode_shift);
+}
+
+void stm32_rcc_enable_servo_clocks(stm32_rcc_t *rcc)
+{
+    if (rcc == NULL) {
+        return;
+    }
+    rcc->AHB1ENR |= RCC_AHB1ENR_GPIOAEN | RCC_AHB1ENR_GPIOBEN;
+    rcc->APB1ENR |= RCC_APB1ENR_TIM3EN | RCC_APB1ENR_TIM4EN;
+    /* RM0090: a peripheral must not be accessed in the two clock cycles after
+     * its enable; reading the enable register back provides that delay. */
+    (void)rcc->APB1ENR;
+}

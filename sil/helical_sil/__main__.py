@@ -1,0 +1,5 @@
+"""`python -m helical_sil ...`"""
+
+from helical_sil.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,151 @@
+"""ctypes binding of the host board (boards/sil/sil_board.h).
+
+The structs below mirror the C header field by field; the sizes are checked
+against the library at load time so a mismatch fails loudly instead of
+silently corrupting memory.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+from pathlib import Path
+from typing import Any
+
+ABI_VERSION = 5
+
+_D = ctypes.c_double
+_I = ctypes.c_int32
+
+
+class SilConfig(ctypes.Structure):
+    _fields_ = [
+        *((n, _D) for n in (
+            "kp_aileron", "kp_elevator", "kp_rudder",
+            "kff_aileron", "kff_elevator", "kff_rudder",
+            "kd_aileron", "kd_elevator", "kd_rudder",
+            "v_ref_m_s", "v_min_m_s", "max_tilt")),
+        ("schedule", _I),
+        *((n, _D) for n in (
+            "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
+            "alt_max_pitch", "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
+            "alt_integral_upright", "alt_integral_inverted",
+            "spd_throttle_trim", "spd_throttle_min", "spd_throttle_max",
+            "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch",
+            "spd_max_integral_throttle",
+            "trim_aileron", "trim_elevator", "trim_rudder")),
+        ("control_rate_hz", _I),
+    ]
+
+
+class SilSensors(ctypes.Structure):
+    _fields_ = [(n, _D) for n in (
+        "dcm_x", "dcm_y", "dcm_z", "gyro_x", "gyro_y", "gyro_z",
+        "airspeed_m_s", "altitude_m", "climb_m_s")]
+
+
+class SilCommand(ctypes.Structure):
+    _fields_ = [
+        *((n, _D) for n in ("turn_rate_rad_s", "pitch_ratio", "altitude_m", "airspeed_m_s",
+                            "throttle")),
+        *((n, _I) for n in ("altitude_hold", "speed_hold", "inverted", "pitch_mode")),
+    ]
+
+
+class SilActuators(ctypes.Structure):
+    _fields_ = [
+        *((n, _D) for n in ("aileron", "elevator", "rudder", "throttle",
+                            "law_aileron", "law_elevator", "law_rudder", "pitch_cmd",
+                            "turn_rate_used_rad_s", "roll_error", "pitch_error")),
+        ("flags", _I),
+    ]
+
+
+class BoardError(RuntimeError):
+    """The board library is missing, stale, or refused a parameter."""
+
+
+def find_board_library(explicit: str | os.PathLike[str] | None = None) -> Path:
+    """The shared library: explicit path, $HT_SIL_BOARD_LIB, or the host build tree."""
+    if explicit:
+        p = Path(explicit)
+        if not p.is_file():
+            raise BoardError(f"board library not found: {p}")
+        return p
+    env = os.environ.get("HT_SIL_BOARD_LIB")
+    if env:
+        p = Path(env)
+        if not p.is_file():
+            raise BoardError(f"HT_SIL_BOARD_LIB points to a missing file: {p}")
+        return p
+    root = Path(__file__).resolve().parents[2]
+    for cand in (root / "build" / "host" / "boards" / "sil" / "libhelical_sil_board.so",
+                 root / "build" / "host" / "boards" / "sil" / "libhelical_sil_board.dylib"):
+        if cand.is_file():
+            return cand
+    raise BoardError(
+        "board library libhelical_sil_board.so not found: build the host preset "
+        "(cmake --workflow --preset host) or set HT_SIL_BOARD_LIB")
+
+
+class Board:
+    """One firmware instance (the C struct lives in a ctypes buffer we own)."""
+
+    _libs: dict[str, ctypes.CDLL] = {}
+
+    def __init__(self, config: dict[str, Any], lib_path: str | os.PathLike[str] | None = None):
+        path = str(find_board_library(lib_path))
+        lib = Board._libs.get(path)
+        if lib is None:
+            lib = ctypes.CDLL(path)
+            _declare(lib)
+            Board._libs[path] = lib
+        self._lib = lib
+        self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
+        cfg = SilConfig()
+        for name, _t in SilConfig._fields_:
+            if name not in config:
+                raise BoardError(f"board config lacks '{name}'")
+            setattr(cfg, name, config[name])
+        err = ctypes.create_string_buffer(64)
+        if lib.sil_board_init(self._state, ctypes.byref(cfg), err, len(err)) != 0:
+            raise BoardError(f"the board refused parameter '{err.value.decode()}'")
+        self._sensors = SilSensors()
+        self._command = SilCommand()
+        self._act = SilActuators()
+        self._step = lib.sil_board_step
+
+    @property
+    def sensors(self) -> SilSensors:
+        return self._sensors
+
+    @property
+    def command(self) -> SilCommand:
+        return self._command
+
+    def step(self) -> SilActuators:
+        """Run one firmware control step on the current sensors and command. The
+        result is the board's own buffer: read it before the next step."""
+        self._step(self._state, ctypes.byref(self._sensors), ctypes.byref(self._command),
+                   ctypes.byref(self._act))
+        return self._act
+
+
+def _declare(lib: ctypes.CDLL) -> None:
+    lib.sil_board_abi_version.restype = ctypes.c_int
+    for fn in ("sil_board_size", "sil_config_size", "sil_sensors_size", "sil_command_size",
+               "sil_actuators_size"):
+        getattr(lib, fn).restype = ctypes.c_size_t
+    got = lib.sil_board_abi_version()
+    if got != ABI_VERSION:
+        raise BoardError(f"board library ABI {got}, harness expects {ABI_VERSION}: rebuild")
+    for fn, st in (("sil_config_size", SilConfig), ("sil_sensors_size", SilSensors),
+                   ("sil_command_size", SilCommand), ("sil_actuators_size", SilActuators)):
+        if getattr(lib, fn)() != ctypes.sizeof(st):
+            raise BoardError(f"{fn}: C and Python structs differ: rebuild the board library")
+    lib.sil_board_init.restype = ctypes.c_int
+    lib.sil_board_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_char_p,
+                                   ctypes.c_size_t]
+    lib.sil_board_step.restype = None
+    lib.sil_board_step.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
+                                   ctypes.c_void_p]

@@ -1,0 +1,243 @@
+"""Command line: `python -m helical_sil run|batch ...`."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from helical_sil.board import BoardError
+from helical_sil.scenario import ScenarioError, load_scenario
+from helical_sil.sim import SimError
+
+SUMMARY_COLS = (
+    ("scenario", "scenario", "{}"),
+    ("aircraft", "aircraft", "{}"),
+    ("turn_rate_rmse_deg_s", "rmse°/s", "{:.2f}"),
+    ("turn_rate_error_pct", "err%", "{:.1f}"),
+    ("turn_entry_s", "entry s", "{:.2f}"),
+    ("bank_overshoot_deg", "ovs°", "{:.1f}"),
+    ("altitude_change_per_360_m", "Δh/360 m", "{:.1f}"),
+    ("sideslip_rms_deg", "β rms°", "{:.2f}"),
+    ("max_altitude_loss_m", "h loss m", "{:.1f}"),
+    ("surface_saturation_frac", "sat", "{:.2f}"),
+    ("sim_speed_x_realtime", "×RT", "{:.0f}"),
+    ("result", "result", "{}"),
+)
+
+
+def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
+            csv: bool = True) -> dict[str, Any]:
+    """Fly one scenario and write its outputs; returns metrics.json's content."""
+    from helical_sil import metrics as met
+    from helical_sil import sim
+
+    sc = load_scenario(path)
+    res = sim.run(sc, board_lib)
+    out.mkdir(parents=True, exist_ok=True)
+    m = met.run_metrics(res)
+    checks = met.evaluate(m, sc.criteria)
+    m["pass_criteria"] = checks
+    m["passed"] = all(c["ok"] for c in checks)
+    if csv:
+        sim.write_csv(res, out / "telemetry.csv")
+    with (out / "metrics.json").open("w") as f:
+        json.dump(m, f, indent=2, allow_nan=False)
+        f.write("\n")
+    if plots:
+        from helical_sil.plots import write_plots
+        write_plots(res, out)
+    return m
+
+
+def _summary_row(m: dict[str, Any]) -> dict[str, str]:
+    """The headline numbers of a run: the worst over its segments."""
+    segs = m["segments"]
+    row: dict[str, str] = {"scenario": m["scenario"], "aircraft": m["aircraft"]}
+
+    def worst(key: str, absval: bool = False) -> float | None:
+        vals = [s[key] for s in segs if s.get(key) is not None]
+        if not vals:
+            return None
+        return max(vals, key=lambda v: abs(v)) if absval else max(vals)
+
+    vals = {
+        "turn_rate_rmse_deg_s": worst("turn_rate_rmse_deg_s"),
+        "turn_rate_error_pct": worst("turn_rate_error_pct"),
+        "turn_entry_s": worst("turn_entry_s"),
+        "bank_overshoot_deg": worst("bank_overshoot_deg"),
+        "altitude_change_per_360_m": worst("altitude_change_per_360_m", absval=True),
+        "sideslip_rms_deg": m["run"]["sideslip_rms_deg"],
+        "max_altitude_loss_m": m["run"]["max_altitude_loss_m"],
+        "surface_saturation_frac": m["run"]["surface_saturation_frac"],
+        "sim_speed_x_realtime": m["run"]["sim_speed_x_realtime"],
+    }
+    for key, _h, fmt in SUMMARY_COLS[2:-1]:
+        v = vals[key]
+        row[key] = "-" if v is None else fmt.format(v)
+    n_ok = sum(c["ok"] for c in m["pass_criteria"])
+    row["result"] = f"{'PASS' if m['passed'] else 'FAIL'} {n_ok}/{len(m['pass_criteria'])}"
+    return row
+
+
+def format_table(rows: list[dict[str, str]]) -> str:
+    heads = [h for _k, h, _f in SUMMARY_COLS]
+    keys = [k for k, _h, _f in SUMMARY_COLS]
+    widths = [max(len(h), *(len(r.get(k, "")) for r in rows)) for k, h in zip(keys, heads)]
+    line = "| " + " | ".join(h.ljust(w) for h, w in zip(heads, widths)) + " |"
+    sep = "|" + "|".join("-" * (w + 2) for w in widths) + "|"
+    body = ["| " + " | ".join(r.get(k, "").ljust(w) for k, w in zip(keys, widths)) + " |"
+            for r in rows]
+    return "\n".join([line, sep, *body])
+
+
+def _progress(i: int, n: int, name: str, t0: float) -> None:
+    """A progress bar on stderr: redrawn in place on a terminal, one line per
+    scenario in a log (ctest, CI)."""
+    width = 30
+    done = int(width * i / n) if n else width
+    bar = "#" * done + "-" * (width - done)
+    text = f"[{bar}] {i}/{n} {time.perf_counter() - t0:6.1f}s {name[:32]:<32}"
+    if sys.stderr.isatty():
+        sys.stderr.write("\r" + text + ("\n" if i == n else ""))
+    else:
+        sys.stderr.write(text.rstrip() + "\n")
+    sys.stderr.flush()
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    m = run_one(Path(args.scenario), Path(args.out), args.board_lib, plots=not args.no_plots)
+    print(format_table([_summary_row(m)]))
+    for c in m["pass_criteria"]:
+        lim = " ".join(x for x in (f"min {c['min']}" if c["min"] is not None else "",
+                                    f"max {c['max']}" if c["max"] is not None else "") if x)
+        val = "n/a" if c["value"] is None else f"{c['value']:.3f}"
+        print(f"  {'ok  ' if c['ok'] else 'FAIL'} {c['segment']}.{c['metric']} = {val} ({lim})")
+    print(f"wrote {Path(args.out).resolve()} (metrics.json, telemetry.csv"
+          f"{', plots' if not args.no_plots else ''})")
+    return 0 if m["passed"] else 1
+
+
+def cmd_batch(args: argparse.Namespace) -> int:
+    d = Path(args.directory)
+    files = sorted(p for p in d.glob("*.toml")) if d.is_dir() else []
+    if not files:
+        print(f"error: no *.toml scenarios in {d}", file=sys.stderr)
+        return 2
+    if args.only:
+        files = [f for f in files if f.stem in set(args.only)]
+    out = Path(args.out)
+    rows, results = [], {}
+    t0 = time.perf_counter()
+    failed_load = False
+    for i, f in enumerate(files):
+        _progress(i, len(files), f.stem, t0)
+        try:
+            m = run_one(f, out / f.stem, args.board_lib, plots=not args.no_plots)
+        except (ScenarioError, SimError) as e:
+            sys.stderr.write(f"\nerror: {e}\n")
+            failed_load = True
+            rows.append({"scenario": f.stem, "result": "ERROR"})
+            continue
+        rows.append(_summary_row(m))
+        results[f.stem] = {"passed": m["passed"], "run": m["run"],
+                           "pass_criteria": m["pass_criteria"]}
+    _progress(len(files), len(files), "done", t0)
+    table = format_table(rows)
+    print(table)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "summary.md").write_text(table + "\n")
+    with (out / "summary.json").open("w") as fh:
+        json.dump(results, fh, indent=2)
+    n_pass = sum(r["passed"] for r in results.values())
+    n_fail = len(files) - n_pass
+    print(f"{n_pass} passed, {n_fail} failed")
+    print(f"wrote {out.resolve()}")
+    return 0 if n_fail == 0 and not failed_load else 1
+
+
+COMPARE_KEYS = ("turn_entry_s", "wrong_way_yaw_deg", "entry_altitude_loss_m",
+                "turn_rate_error_pct", "bank_overshoot_deg", "max_altitude_loss_m",
+                "path_altitude_loss_m", "heading_disturbance_deg", "altitude_error_max_m",
+                "sideslip_rms_deg")
+
+
+def cmd_compare(args: argparse.Namespace) -> int:
+    """Side by side, per segment label, the metrics of two or more runs."""
+    runs = []
+    for d in args.runs:
+        p = Path(d) / "metrics.json"
+        if not p.is_file():
+            print(f"error: {p}: no such file", file=sys.stderr)
+            return 2
+        runs.append(json.loads(p.read_text()))
+    keys = tuple(args.metrics) if args.metrics else COMPARE_KEYS
+    labels = [s["label"] for s in runs[0]["segments"]]
+    names = [r["scenario"] for r in runs]
+    rows = []
+    for lab in labels:
+        segs = [{s["label"]: s for s in r["segments"]}.get(lab, {}) for r in runs]
+        for k in keys:
+            vals = [sg.get(k) for sg in segs]
+            if all(v is None for v in vals):
+                continue
+            rows.append([lab, k] + ["-" if v is None else f"{v:.2f}" for v in vals])
+    heads = ["segment", "metric"] + names
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
+              for i, h in enumerate(heads)]
+    print("| " + " | ".join(h.ljust(w) for h, w in zip(heads, widths)) + " |")
+    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
+    for r in rows:
+        print("| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="python -m helical_sil",
+        description="Software-in-the-loop: the helical-turn C controller (host board "
+                    "library) flies JSBSim aircraft through TOML scenarios.")
+    ap.add_argument("--board-lib", default=None,
+                    help="path of libhelical_sil_board.so (default: $HT_SIL_BOARD_LIB or "
+                         "build/host/boards/sil/)")
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run", help="fly one scenario",
+                       description="Fly one scenario; write telemetry.csv (control rate), "
+                                   "metrics.json and PNG plots to --out. Exit 1 if a pass "
+                                   "criterion fails, 2 on a bad scenario file.")
+    r.add_argument("scenario", help="scenario TOML file")
+    r.add_argument("--out", required=True, help="output directory")
+    r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    r.set_defaults(func=cmd_run)
+    b = sub.add_parser("batch", help="fly every scenario of a directory",
+                       description="Fly every *.toml of a directory (not its sub-folders), "
+                                   "one output folder per scenario, with a progress bar and a "
+                                   "summary table (also summary.md, summary.json).")
+    b.add_argument("directory", help="directory of scenario TOML files")
+    b.add_argument("--out", required=True, help="output directory")
+    b.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    b.add_argument("--only", nargs="*", help="scenario names (file stems) to run")
+    b.set_defaults(func=cmd_batch)
+    c = sub.add_parser("compare", help="metrics of runs side by side",
+                       description="Print, per segment label of the first run, the metrics of "
+                                   "two or more run output folders side by side (for example "
+                                   "feed-forward on and off, or the two pitch methods).")
+    c.add_argument("runs", nargs="+", help="run output directories (with metrics.json)")
+    c.add_argument("--metrics", nargs="*", help="metric names (default: a standard set)")
+    c.set_defaults(func=cmd_compare)
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args))
+    except ScenarioError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except (BoardError, SimError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 3

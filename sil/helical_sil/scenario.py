@@ -1,0 +1,383 @@
+"""Scenario and aircraft files (TOML): parsing and validation.
+
+Every error names the offending key (e.g. ``command[2].turn_rate_deg_s``) and
+the file. The schema is documented in sil/README.md.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+SIL_DIR = Path(__file__).resolve().parents[1]
+DEFAULT_AIRCRAFT_DIR = SIL_DIR / "scenarios" / "aircraft"
+
+LAW_PARAMS = (
+    "kp_aileron", "kp_elevator", "kp_rudder",
+    "kff_aileron", "kff_elevator", "kff_rudder",
+    "kd_aileron", "kd_elevator", "kd_rudder",
+    "v_ref", "v_min", "schedule", "max_tilt",
+)
+HOLD_PARAMS = (
+    "alt_kp", "alt_ki", "alt_kd", "alt_max_pitch", "alt_max_integral", "alt_max_error_m",
+    "alt_integral_band_m",
+    "alt_integral_upright", "alt_integral_inverted",
+    "spd_kp", "spd_ki", "spd_kff_pitch", "spd_max_integral",
+    "throttle_min", "throttle_max", "throttle_trim",
+)
+GAIN_KEYS = LAW_PARAMS + HOLD_PARAMS
+# Defaults of the parameters an aircraft file may leave out (control-law.md, holds).
+GAIN_DEFAULTS: dict[str, float] = {
+    "kp_aileron": 1.0, "kp_elevator": 1.0, "kp_rudder": 1.0,
+    "kff_aileron": 0.0, "kff_elevator": 0.0, "kff_rudder": 0.0,
+    "kd_aileron": 0.0, "kd_elevator": 0.0, "kd_rudder": 0.0,
+    "v_ref": 15.0, "v_min": 5.0, "schedule": 0, "max_tilt": 4.0,
+    "alt_kp": 0.01, "alt_ki": 0.0, "alt_kd": 0.0, "alt_max_pitch": 0.3,
+    "alt_max_integral": 0.2, "alt_max_error_m": 1000.0, "alt_integral_band_m": 10.0,
+    "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
+    "spd_kp": 0.1, "spd_ki": 0.02, "spd_kff_pitch": 1.0, "spd_max_integral": 0.5,
+    "throttle_min": 0.0, "throttle_max": 1.0,
+}
+
+TURBULENCE = ("none", "light", "moderate", "severe")
+PITCH_MODES = ("earth_frame", "tilt_cross")
+
+SEGMENT_METRICS = (
+    "turn_rate_rmse_deg_s", "turn_rate_error_pct", "turn_entry_s", "bank_overshoot_deg",
+    "altitude_change_m", "altitude_change_per_360_m", "sideslip_rms_deg",
+    "max_altitude_loss_m", "surface_saturation_frac", "wrong_way_yaw_deg",
+    "entry_altitude_loss_m", "heading_disturbance_deg", "altitude_error_max_m",
+    "path_altitude_loss_m",
+    "airspeed_error_max_m_s",
+)
+RUN_METRICS = (
+    "max_altitude_loss_m", "surface_saturation_frac", "sideslip_rms_deg",
+    "sim_speed_x_realtime", "altitude_error_max_m",
+)
+
+
+class ScenarioError(ValueError):
+    """A scenario or aircraft file is wrong; the message names the key."""
+
+
+@dataclass
+class Command:
+    t_s: float
+    label: str
+    turn_rate_deg_s: float | None = None
+    pitch: float | None = None
+    altitude_m: float | None = None
+    climb_m_s: float | None = None
+    airspeed_m_s: float | None = None
+    throttle: float | None = None
+    inverted: bool | None = None
+    pitch_mode: str | None = None
+
+
+@dataclass
+class PassCriterion:
+    metric: str
+    segment: str  # a command label, or "run"
+    max: float | None = None
+    min: float | None = None
+
+
+@dataclass
+class Aircraft:
+    name: str
+    model: str
+    description: str
+    gains: dict[str, float]
+    altitude_m: float
+    airspeed_m_s: float
+
+
+@dataclass
+class Scenario:
+    path: Path
+    name: str
+    description: str
+    aircraft: Aircraft
+    duration_s: float
+    seed: int
+    control_rate_hz: int
+    sim_rate_hz: int
+    altitude_m: float
+    airspeed_m_s: float
+    heading_deg: float
+    trim: bool
+    gains: dict[str, float]
+    wind_north_m_s: float = 0.0
+    wind_east_m_s: float = 0.0
+    wind_down_m_s: float = 0.0
+    turbulence: str = "none"
+    gyro_noise_rad_s: float = 0.0
+    gyro_bias_rad_s: float = 0.0
+    airspeed_noise_m_s: float = 0.0
+    latency_steps: int = 0
+    steady_after_s: float = 8.0
+    entry_window_s: float = 6.0
+    commands: list[Command] = field(default_factory=list)
+    criteria: list[PassCriterion] = field(default_factory=list)
+
+
+# --- typed getters ----------------------------------------------------------
+
+def _where(src: Path, key: str) -> str:
+    return f"{src}: '{key}'"
+
+
+def _num(src: Path, key: str, v: Any, lo: float | None = None, hi: float | None = None) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise ScenarioError(f"{_where(src, key)}: expected a number, got {type(v).__name__} {v!r}")
+    x = float(v)
+    if not math.isfinite(x):
+        raise ScenarioError(f"{_where(src, key)}: must be finite, got {v!r}")
+    if lo is not None and x < lo:
+        raise ScenarioError(f"{_where(src, key)}: must be >= {lo}, got {v!r}")
+    if hi is not None and x > hi:
+        raise ScenarioError(f"{_where(src, key)}: must be <= {hi}, got {v!r}")
+    return x
+
+
+def _int(src: Path, key: str, v: Any, lo: int | None = None, hi: int | None = None) -> int:
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise ScenarioError(f"{_where(src, key)}: expected an integer, got {type(v).__name__} {v!r}")
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        raise ScenarioError(f"{_where(src, key)}: must be in [{lo}, {hi}], got {v!r}")
+    return v
+
+
+def _bool(src: Path, key: str, v: Any) -> bool:
+    if not isinstance(v, bool):
+        raise ScenarioError(f"{_where(src, key)}: expected true or false, got {type(v).__name__} {v!r}")
+    return v
+
+
+def _str(src: Path, key: str, v: Any, choices: tuple[str, ...] | None = None) -> str:
+    if not isinstance(v, str):
+        raise ScenarioError(f"{_where(src, key)}: expected a string, got {type(v).__name__} {v!r}")
+    if choices is not None and v not in choices:
+        raise ScenarioError(f"{_where(src, key)}: must be one of {', '.join(choices)}; got {v!r}")
+    return v
+
+
+def _table(src: Path, key: str, v: Any) -> dict[str, Any]:
+    if not isinstance(v, dict):
+        raise ScenarioError(f"{_where(src, key)}: expected a table, got {type(v).__name__}")
+    return v
+
+
+def _check_keys(src: Path, prefix: str, table: dict[str, Any], allowed: tuple[str, ...]) -> None:
+    for k in table:
+        if k not in allowed:
+            name = f"{prefix}.{k}" if prefix else k
+            raise ScenarioError(
+                f"{_where(src, name)}: unknown key (allowed here: {', '.join(allowed)})")
+
+
+def _load_toml(path: Path) -> dict[str, Any]:
+    try:
+        with path.open("rb") as f:
+            return tomllib.load(f)
+    except FileNotFoundError:
+        raise ScenarioError(f"{path}: no such file") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ScenarioError(f"{path}: not valid TOML: {e}") from None
+
+
+def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
+    _check_keys(src, prefix, table, GAIN_KEYS)
+    out: dict[str, float] = {}
+    for k, v in table.items():
+        key = f"{prefix}.{k}"
+        if k == "schedule":
+            out[k] = 1.0 if (_bool(src, key, v) if isinstance(v, bool) else _int(src, key, v, 0, 1)) else 0.0
+        elif k.startswith(("kp_", "kff_", "kd_")):
+            out[k] = _num(src, key, v, 0.0, 64.0)
+        elif k in ("v_ref", "v_min"):
+            out[k] = _num(src, key, v, 1.0, 327.0)
+        elif k == "max_tilt":
+            out[k] = _num(src, key, v, 0.01, 8.0)
+        elif k in ("throttle_min", "throttle_max", "throttle_trim", "spd_max_integral"):
+            out[k] = _num(src, key, v, 0.0, 1.0)
+        elif k in ("alt_integral_upright", "alt_integral_inverted"):
+            out[k] = _num(src, key, v, -4.0, 4.0)
+        elif k in ("alt_max_pitch", "alt_max_integral"):
+            out[k] = _num(src, key, v, 0.0, 4.0)
+        elif k in ("alt_max_error_m", "alt_integral_band_m"):
+            out[k] = _num(src, key, v, 1.0, 10000.0)
+        else:
+            out[k] = _num(src, key, v, 0.0, 64.0)
+    return out
+
+
+# --- aircraft -----------------------------------------------------------------
+
+def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "aircraft") -> Aircraft:
+    """Find <name>.toml in the search dirs (the scenario's aircraft/ folder first)."""
+    for d in search_dirs:
+        p = d / f"{name}.toml"
+        if p.is_file():
+            break
+    else:
+        known = sorted({q.stem for d in search_dirs if d.is_dir() for q in d.glob("*.toml")})
+        raise ScenarioError(
+            f"{_where(src, key)}: unknown aircraft {name!r} (known: {', '.join(known) or 'none'})")
+    doc = _load_toml(p)
+    _check_keys(p, "", doc, ("model", "description", "gains", "initial"))
+    model = _str(p, "model", doc.get("model", name))
+    desc = _str(p, "description", doc.get("description", ""))
+    gains = dict(GAIN_DEFAULTS)
+    gains.update(_gains(p, "gains", _table(p, "gains", doc.get("gains", {}))))
+    init = _table(p, "initial", doc.get("initial", {}))
+    _check_keys(p, "initial", init, ("altitude_m", "airspeed_m_s"))
+    alt = _num(p, "initial.altitude_m", init.get("altitude_m", 1500.0), 10.0, 20000.0)
+    spd = _num(p, "initial.airspeed_m_s", init.get("airspeed_m_s", gains["v_ref"]), 5.0, 300.0)
+    return Aircraft(name=name, model=model, description=desc, gains=gains, altitude_m=alt,
+                    airspeed_m_s=spd)
+
+
+# --- scenario -----------------------------------------------------------------
+
+TOP_KEYS = ("aircraft", "description", "duration_s", "seed", "control_rate_hz", "sim_rate_hz",
+            "initial", "gains", "wind", "sensors", "command", "pass", "metrics")
+COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb_m_s",
+                "airspeed_m_s",
+                "throttle", "inverted", "pitch_mode")
+
+
+def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> Scenario:
+    src = Path(path)
+    doc = _load_toml(src)
+    _check_keys(src, "", doc, TOP_KEYS)
+    if "aircraft" not in doc:
+        raise ScenarioError(f"{_where(src, 'aircraft')}: missing (required)")
+    dirs = aircraft_dirs or [src.parent / "aircraft", DEFAULT_AIRCRAFT_DIR]
+    ac = load_aircraft(_str(src, "aircraft", doc["aircraft"]), dirs, src)
+    if "duration_s" not in doc:
+        raise ScenarioError(f"{_where(src, 'duration_s')}: missing (required)")
+    duration = _num(src, "duration_s", doc["duration_s"], 0.1, 3600.0)
+    seed = _int(src, "seed", doc.get("seed", 1), 0, 2**31 - 1)
+    sim_rate = _int(src, "sim_rate_hz", doc.get("sim_rate_hz", 120), 10, 1000)
+    ctl_rate = _int(src, "control_rate_hz", doc.get("control_rate_hz", 40), 1, 1000)
+    if sim_rate % ctl_rate != 0:
+        raise ScenarioError(
+            f"{_where(src, 'control_rate_hz')}: must divide sim_rate_hz ({sim_rate}), got {ctl_rate}")
+
+    init = _table(src, "initial", doc.get("initial", {}))
+    _check_keys(src, "initial", init, ("altitude_m", "airspeed_m_s", "heading_deg", "trim"))
+    gains = dict(ac.gains)
+    gains.update(_gains(src, "gains", _table(src, "gains", doc.get("gains", {}))))
+
+    sc = Scenario(
+        path=src, name=src.stem, description=_str(src, "description", doc.get("description", "")),
+        aircraft=ac, duration_s=duration, seed=seed, control_rate_hz=ctl_rate,
+        sim_rate_hz=sim_rate,
+        altitude_m=_num(src, "initial.altitude_m", init.get("altitude_m", ac.altitude_m), 10.0,
+                        20000.0),
+        airspeed_m_s=_num(src, "initial.airspeed_m_s", init.get("airspeed_m_s", ac.airspeed_m_s),
+                          5.0, 300.0),
+        heading_deg=_num(src, "initial.heading_deg", init.get("heading_deg", 0.0), -360.0, 360.0),
+        trim=_bool(src, "initial.trim", init.get("trim", True)),
+        gains=gains,
+    )
+
+    wind = _table(src, "wind", doc.get("wind", {}))
+    _check_keys(src, "wind", wind, ("north_m_s", "east_m_s", "down_m_s", "turbulence"))
+    sc.wind_north_m_s = _num(src, "wind.north_m_s", wind.get("north_m_s", 0.0), -100.0, 100.0)
+    sc.wind_east_m_s = _num(src, "wind.east_m_s", wind.get("east_m_s", 0.0), -100.0, 100.0)
+    sc.wind_down_m_s = _num(src, "wind.down_m_s", wind.get("down_m_s", 0.0), -50.0, 50.0)
+    sc.turbulence = _str(src, "wind.turbulence", wind.get("turbulence", "none"), TURBULENCE)
+
+    sens = _table(src, "sensors", doc.get("sensors", {}))
+    _check_keys(src, "sensors", sens, ("gyro_noise_rad_s", "gyro_bias_rad_s",
+                                       "airspeed_noise_m_s", "latency_steps"))
+    sc.gyro_noise_rad_s = _num(src, "sensors.gyro_noise_rad_s", sens.get("gyro_noise_rad_s", 0.0),
+                               0.0, 1.0)
+    sc.gyro_bias_rad_s = _num(src, "sensors.gyro_bias_rad_s", sens.get("gyro_bias_rad_s", 0.0),
+                              0.0, 1.0)
+    sc.airspeed_noise_m_s = _num(src, "sensors.airspeed_noise_m_s",
+                                 sens.get("airspeed_noise_m_s", 0.0), 0.0, 20.0)
+    sc.latency_steps = _int(src, "sensors.latency_steps", sens.get("latency_steps", 0), 0, 100)
+
+    met = _table(src, "metrics", doc.get("metrics", {}))
+    _check_keys(src, "metrics", met, ("steady_after_s", "entry_window_s"))
+    sc.steady_after_s = _num(src, "metrics.steady_after_s", met.get("steady_after_s", 8.0), 0.0,
+                             600.0)
+    sc.entry_window_s = _num(src, "metrics.entry_window_s", met.get("entry_window_s", 6.0), 0.5,
+                             600.0)
+
+    cmds = doc.get("command", [])
+    if not isinstance(cmds, list):
+        raise ScenarioError(f"{_where(src, 'command')}: expected an array of tables [[command]]")
+    last_t = -1.0
+    labels: set[str] = set()
+    for i, c in enumerate(cmds):
+        pre = f"command[{i}]"
+        c = _table(src, pre, c)
+        _check_keys(src, pre, c, COMMAND_KEYS)
+        if "t_s" not in c:
+            raise ScenarioError(f"{_where(src, pre + '.t_s')}: missing (required)")
+        t = _num(src, pre + ".t_s", c["t_s"], 0.0, duration)
+        if t < last_t:
+            raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
+        last_t = t
+        label = _str(src, pre + ".label", c.get("label", f"seg{i}"))
+        if label in labels or label == "run":
+            raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
+        labels.add(label)
+        if "pitch" in c and "altitude_m" in c:
+            raise ScenarioError(
+                f"{_where(src, pre + '.pitch')}: give either pitch or altitude_m, not both")
+        if "throttle" in c and "airspeed_m_s" in c:
+            raise ScenarioError(
+                f"{_where(src, pre + '.throttle')}: give either throttle or airspeed_m_s, not both")
+        cmd = Command(t_s=t, label=label)
+        if "turn_rate_deg_s" in c:
+            cmd.turn_rate_deg_s = _num(src, pre + ".turn_rate_deg_s", c["turn_rate_deg_s"], -900.0, 900.0)
+        if "pitch" in c:
+            cmd.pitch = _num(src, pre + ".pitch", c["pitch"], -30.0, 30.0)
+        if "altitude_m" in c:
+            cmd.altitude_m = _num(src, pre + ".altitude_m", c["altitude_m"], 10.0, 20000.0)
+        if "climb_m_s" in c:
+            if "altitude_m" not in c:
+                raise ScenarioError(
+                    f"{_where(src, pre + '.climb_m_s')}: needs altitude_m in the same command")
+            cmd.climb_m_s = _num(src, pre + ".climb_m_s", c["climb_m_s"], 0.1, 100.0)
+        if "airspeed_m_s" in c:
+            cmd.airspeed_m_s = _num(src, pre + ".airspeed_m_s", c["airspeed_m_s"], 5.0, 300.0)
+        if "throttle" in c:
+            cmd.throttle = _num(src, pre + ".throttle", c["throttle"], 0.0, 1.0)
+        if "inverted" in c:
+            cmd.inverted = _bool(src, pre + ".inverted", c["inverted"])
+        if "pitch_mode" in c:
+            cmd.pitch_mode = _str(src, pre + ".pitch_mode", c["pitch_mode"], PITCH_MODES)
+        sc.commands.append(cmd)
+
+    crit = doc.get("pass", [])
+    if not isinstance(crit, list):
+        raise ScenarioError(f"{_where(src, 'pass')}: expected an array of tables [[pass]]")
+    for i, c in enumerate(crit):
+        pre = f"pass[{i}]"
+        c = _table(src, pre, c)
+        _check_keys(src, pre, c, ("metric", "segment", "max", "min"))
+        if "metric" not in c:
+            raise ScenarioError(f"{_where(src, pre + '.metric')}: missing (required)")
+        seg = _str(src, pre + ".segment", c.get("segment", "run"))
+        allowed = RUN_METRICS if seg == "run" else SEGMENT_METRICS
+        metric = _str(src, pre + ".metric", c["metric"], allowed)
+        if seg != "run" and seg not in labels:
+            raise ScenarioError(
+                f"{_where(src, pre + '.segment')}: no command has label {seg!r} "
+                f"(labels: {', '.join(sorted(labels)) or 'none'}; or 'run')")
+        if "max" not in c and "min" not in c:
+            raise ScenarioError(f"{_where(src, pre)}: give max and/or min")
+        sc.criteria.append(PassCriterion(
+            metric=metric, segment=seg,
+            max=_num(src, pre + ".max", c["max"]) if "max" in c else None,
+            min=_num(src, pre + ".min", c["min"]) if "min" in c else None))
+    return sc
