@@ -165,7 +165,8 @@ int q_unit3_q16(const int32_t v[3], q16_t out[3]);
 
 /*
  * The same in Q28 (2^28 = 1.0), the format the control law carries its unit
- * quantities in: within a few LSB of Q28 (about 1e-8) of the exact unit vector.
+ * quantities in: within 6 LSB of Q28 (2.3e-8) of the exact unit vector per
+ * component (the reciprocal square root contributes up to 3, the roundings the rest).
  */
 int q_unit2_q28(int32_t a, int32_t b, int32_t *ua, int32_t *ub);
 int q_unit3_q28(const int32_t v[3], int32_t out[3]);

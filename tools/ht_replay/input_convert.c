@@ -1,0 +1,73 @@
+/* input_convert.c - real CSV values to ht_input_t; see input_convert.h. */
+#include "input_convert.h"
+
+#include <stdint.h>
+#include <string.h>
+
+#include "number.h"
+
+/* How one column is stored in ht_input_t. */
+typedef struct {
+    double scale;
+    long lo, hi;
+    const char *format; /* for the message */
+} col_format_t;
+
+static const col_format_t q14_fmt = {16384.0, INT16_MIN, INT16_MAX, "Q14, [-2, 1.99994]"};
+static const col_format_t q11_fmt = {2048.0, INT16_MIN, INT16_MAX, "Q11 rad/s, [-16, 15.9995]"};
+static const col_format_t q16_fmt = {65536.0, INT32_MIN, INT32_MAX, "Q16, [-32768, 32767.99998]"};
+static const col_format_t cm_fmt = {100.0, INT16_MIN, INT16_MAX,
+                                    "int16 cm/s, [-327.68, 327.67] m/s"};
+
+static void out_of_range(ht_csv_error_t *err, unsigned long line, ht_csv_col_t c, double v,
+                         const char *format)
+{
+    err->line = line;
+    (void)snprintf(err->column, sizeof err->column, "%s", ht_csv_col_name(c));
+    (void)snprintf(err->message, sizeof err->message, "%.10g does not fit the core's format (%s)",
+                   v, format);
+}
+
+int ht_replay_to_input(const double values[HT_COL_COUNT], unsigned long line_number, ht_input_t *in,
+                       ht_csv_error_t *err)
+{
+    static const struct {
+        ht_csv_col_t col;
+        const col_format_t *fmt;
+    } plan[] = {
+        {HT_COL_X, &q14_fmt},         {HT_COL_Y, &q14_fmt},      {HT_COL_Z, &q14_fmt},
+        {HT_COL_TURN_RATE, &q11_fmt}, {HT_COL_PITCH, &q16_fmt},  {HT_COL_AIRSPEED, &cm_fmt},
+        {HT_COL_GYRO_X, &q11_fmt},    {HT_COL_GYRO_Y, &q11_fmt}, {HT_COL_GYRO_Z, &q11_fmt},
+    };
+    long fixed[HT_COL_COUNT] = {0};
+    for (size_t i = 0; i < sizeof plan / sizeof plan[0]; i++) {
+        ht_csv_col_t c = plan[i].col;
+        const col_format_t *f = plan[i].fmt;
+        if (ht_scale_round(values[c], f->scale, f->lo, f->hi, &fixed[c]) != 0) {
+            out_of_range(err, line_number, c, values[c], f->format);
+            return -1;
+        }
+    }
+    /* A flag, not a quantity: 0.4 or 2 is more likely a wrong column than a
+     * value to round. */
+    double inv = values[HT_COL_INVERTED];
+    if (inv != 0.0 && inv != 1.0) {
+        err->line = line_number;
+        (void)snprintf(err->column, sizeof err->column, "%s", ht_csv_col_name(HT_COL_INVERTED));
+        (void)snprintf(err->message, sizeof err->message, "%.10g is not 0 or 1", inv);
+        return -1;
+    }
+
+    memset(in, 0, sizeof *in);
+    in->x = (q14_t)fixed[HT_COL_X];
+    in->y = (q14_t)fixed[HT_COL_Y];
+    in->z = (q14_t)fixed[HT_COL_Z];
+    in->turn_rate_rad_s = (q11_t)fixed[HT_COL_TURN_RATE];
+    in->pitch_ratio = (q16_t)fixed[HT_COL_PITCH];
+    in->airspeed_cm_s = (int16_t)fixed[HT_COL_AIRSPEED];
+    in->gyro_rad_s[0] = (q11_t)fixed[HT_COL_GYRO_X];
+    in->gyro_rad_s[1] = (q11_t)fixed[HT_COL_GYRO_Y];
+    in->gyro_rad_s[2] = (q11_t)fixed[HT_COL_GYRO_Z];
+    in->inverted = inv != 0.0 ? 1u : 0u;
+    return 0;
+}

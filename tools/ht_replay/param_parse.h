@@ -1,0 +1,46 @@
+/*
+ * param_parse.h - "--param NAME=VALUE" to ht_params_t for ht_replay.
+ *
+ * Names and units are those of docs/control-law.md's parameter table, plus
+ * pitch_mode:
+ *   kp_*, kff_*, kd_* (aileron, elevator, rudder)  gain, stored as Q16
+ *   v_ref, v_min                                   m/s, stored as cm/s
+ *   schedule                                       0 or 1
+ *   max_tilt                                       ratio, stored as Q16
+ *   pitch_mode                                     earth | cross | 0 | 1
+ *
+ * This layer checks the syntax and that a value fits the field's format
+ * (a gain of 1e6 does not fit Q16). Whether a value is allowed by the law
+ * (a gain in [0, 64], v_min >= 1 m/s, ...) is decided by ht_init alone, so
+ * that the tool never disagrees with the library about the ranges.
+ */
+#ifndef HT_REPLAY_PARAM_PARSE_H
+#define HT_REPLAY_PARAM_PARSE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "helical/helical_turn.h"
+
+/*
+ * Apply one "NAME=VALUE" to *p. Returns 0 and writes the parameter to *id
+ * (may be NULL); or -1 with a message naming the parameter (or the whole
+ * argument when there is no name) written to msg, *p unchanged.
+ */
+int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg, size_t size);
+
+/* The tool's name of a parameter (the control-law.md name), or "" if id is
+ * not a parameter. Kept here rather than taken from ht_param_name so that the
+ * parser does not depend on the core's object code; a unit test checks the
+ * two tables agree. */
+const char *ht_param_tool_name(ht_param_id_t id);
+
+/* Write the value of parameter id in *p, in --param units ("1.5", "15",
+ * "earth"), to buf. Returns 0, or -1 (and "?") if id is not a parameter. */
+int ht_param_format_value(const ht_params_t *p, ht_param_id_t id, char *buf, size_t size);
+
+/* Print one line per parameter: name, unit and the value in *p, in the
+ * units of --param (used by --help with the defaults). */
+void ht_param_print_table(FILE *out, const ht_params_t *p);
+
+#endif /* HT_REPLAY_PARAM_PARSE_H */
