@@ -142,12 +142,16 @@ static void pitch_tilt_cross(const ht_input_t *in, const int32_t tilt[3], int32_
 }
 
 /* One axis: d = -kp*s_p*e + kff*s_ff*w_d + kd*s_p*(w_d - g), in Q20 commands. */
-static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_p_q20,
-                           int32_t s_ff_q20, int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
+static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q20,
+                           int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
 {
-    q16_t gp = qi_mul32_fit(ctl->gains.kp[axis], s_p_q20, 20u);
+    q16_t gp = ctl->gains.kp[axis];
+    q16_t gd = ctl->gains.kd[axis];
+    if (ctl->schedule) { /* s_p = s_ff; unscheduled, s_p = 1 costs nothing */
+        gp = qi_mul32_fit(gp, s_ff_q20, 20u);
+        gd = qi_mul32_fit(gd, s_ff_q20, 20u);
+    }
     q16_t gff = qi_mul32_fit(ctl->gains.kff[axis], s_ff_q20, 20u);
-    q16_t gd = qi_mul32_fit(ctl->gains.kd[axis], s_p_q20, 20u);
     int32_t rate_error_q20 = rate_d_q20 - (int32_t)gyro_q11 * 512;
     int32_t d = qi_mul32(gp, e_q28, 24u);
     d = qi_sub_sat32(qi_mul32(gff, rate_d_q20, 16u), d);
@@ -207,18 +211,17 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         pe = pitch_earth_frame(in, tilt, t_q28, e, &flags);
     }
 
-    /* 9. Airspeed scales, Q20: s_ff = v_ref / S, s_p = s_ff if scheduled. */
+    /* 9. Airspeed scale, Q20: s_ff = v_ref / S (s_p is s_ff when scheduled, else 1). */
     int32_t s_ff_q20 = qi_mul32_fit(ctl->v_ref_cm_s, inv_s.inv_q30, 10u + inv_s.exp);
-    int32_t s_p_q20 = ctl->schedule ? s_ff_q20 : ((int32_t)1 << 20);
 
     /* 10-11. Demands and surfaces. */
-    o->elevator = surface_from_q20(qi_sub_sat32(0, axis_demand(ctl, 0u, s_p_q20, s_ff_q20, e[0],
-                                                               rate_d[0], in->gyro_rad_s[0])),
-                                   &flags);
+    o->elevator = surface_from_q20(
+        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q20, e[0], rate_d[0], in->gyro_rad_s[0])),
+        &flags);
     o->aileron = surface_from_q20(
-        axis_demand(ctl, 1u, s_p_q20, s_ff_q20, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
-    o->rudder = surface_from_q20(
-        axis_demand(ctl, 2u, s_p_q20, s_ff_q20, e[2], rate_d[2], in->gyro_rad_s[2]), &flags);
+        axis_demand(ctl, 1u, s_ff_q20, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
+    o->rudder = surface_from_q20(axis_demand(ctl, 2u, s_ff_q20, e[2], rate_d[2], in->gyro_rad_s[2]),
+                                 &flags);
 
     o->turn_rate_used_rad_s = q11_from_q20(turn.omega_q20);
     o->tilt_ratio = turn.ratio_q16;
