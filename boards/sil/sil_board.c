@@ -116,6 +116,102 @@ size_t sil_actuators_size(void)
 
 /* --- init ------------------------------------------------------------- */
 
+/* The flight modes' parameters (physical units -> modes.h), the waypoints,
+ * and the state. The holds are the board's own (already checked). */
+static int modes_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t err_len)
+{
+    if (cfg->waypoint_count < 0 || cfg->waypoint_count > SIL_MAX_WAYPOINTS) {
+        return fail(err, err_len, "waypoint_count");
+    }
+    for (int i = 0; i < cfg->waypoint_count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            if (!in_range(cfg->waypoints[i][k], -1.0e6, 1.0e6)) {
+                return fail(err, err_len, "waypoints");
+            }
+        }
+        b->waypoints[i].north_m = (int32_t)llround(cfg->waypoints[i][0]);
+        b->waypoints[i].east_m = (int32_t)llround(cfg->waypoints[i][1]);
+        b->waypoints[i].alt_m = (int32_t)llround(cfg->waypoints[i][2]);
+    }
+    /* every value is range-checked by ht_modes_init after conversion; refuse
+     * here only what would not convert into the field's integer type */
+    const double dvals[] = {cfg->nav_turn_rate_max_deg_s, cfg->nav_l1_m,
+                            cfg->nav_arrival_radius_m,    cfg->nav_loiter_radius_m,
+                            cfg->nav_home_alt_m,          cfg->cruise_m_s,
+                            cfg->fbw_turn_rate_max_deg_s, cfg->fbw_pitch_max,
+                            cfg->fbw_deadband_us,         cfg->turn_slew_deg_s2,
+                            cfg->pitch_slew_per_s,        cfg->aoa_v_ref_m_s,
+                            cfg->aoa_v_enable_m_s,        cfg->aoa_load_max,
+                            cfg->aoa_normal_deg,          cfg->aoa_normal_slope_deg,
+                            cfg->aoa_inverted_deg,        cfg->aoa_inverted_slope_deg,
+                            cfg->aoa_trim_normal,         cfg->aoa_trim_normal_slope,
+                            cfg->aoa_trim_inverted,       cfg->aoa_trim_inverted_slope};
+    static const char *const dnames[] = {"nav.turn_rate_max_deg_s", "nav.l1_m",
+                                         "nav.arrival_radius_m",    "nav.loiter_radius_m",
+                                         "nav.home_alt_m",          "nav.cruise_m_s",
+                                         "fbw.turn_rate_max_deg_s", "fbw.pitch_max",
+                                         "fbw.deadband_us",         "modes.turn_slew_deg_s2",
+                                         "modes.pitch_slew_per_s",  "aoa.v_ref_m_s",
+                                         "aoa.v_enable_m_s",        "aoa.load_max",
+                                         "aoa.aoa_normal_deg",      "aoa.aoa_normal_slope_deg",
+                                         "aoa.aoa_inverted_deg",    "aoa.aoa_inverted_slope_deg",
+                                         "aoa.trim_normal",         "aoa.trim_normal_slope",
+                                         "aoa.trim_inverted",       "aoa.trim_inverted_slope"};
+    for (size_t i = 0; i < sizeof dvals / sizeof dvals[0]; ++i) {
+        if (!in_range(dvals[i], -30000.0, 30000.0)) {
+            return fail(err, err_len, dnames[i]);
+        }
+    }
+    ht_modes_params_t p;
+    ht_modes_params_default(&p);
+    p.rc_loss_ticks = (uint16_t)to_fixed(cfg->rc_loss_ticks, 1.0, 0, UINT16_MAX);
+    p.rc_recover_ticks = (uint16_t)to_fixed(cfg->rc_recover_ticks, 1.0, 0, UINT16_MAX);
+    p.blend_ticks = (uint16_t)to_fixed(cfg->blend_ticks, 1.0, 0, UINT16_MAX);
+    p.turn_slew_deg_s2 = (int16_t)to_fixed(cfg->turn_slew_deg_s2, 1.0, INT16_MIN, INT16_MAX);
+    p.pitch_slew_per_s = to_q16(cfg->pitch_slew_per_s);
+    p.cruise_cm_s = to_cm16(cfg->cruise_m_s);
+    p.rate_hz = (uint16_t)cfg->control_rate_hz;
+    p.fbw.turn_rate_max_deg_s =
+        (int16_t)to_fixed(cfg->fbw_turn_rate_max_deg_s, 1.0, INT16_MIN, INT16_MAX);
+    p.fbw.pitch_max = to_q16(cfg->fbw_pitch_max);
+    p.fbw.deadband_us = (uint16_t)to_fixed(cfg->fbw_deadband_us, 1.0, 0, UINT16_MAX);
+    p.nav.law = (uint8_t)(cfg->nav_law != 0 ? HT_GUIDE_L1 : HT_GUIDE_HEADING);
+    p.nav.loop = (uint8_t)(cfg->nav_loop != 0);
+    p.nav.turn_rate_max_deg_s =
+        (int16_t)to_fixed(cfg->nav_turn_rate_max_deg_s, 1.0, INT16_MIN, INT16_MAX);
+    p.nav.l1_m = (uint16_t)to_fixed(cfg->nav_l1_m, 1.0, 0, UINT16_MAX);
+    p.nav.arrival_radius_m = (uint16_t)to_fixed(cfg->nav_arrival_radius_m, 1.0, 0, UINT16_MAX);
+    p.nav.loiter_radius_m = (uint16_t)to_fixed(cfg->nav_loiter_radius_m, 1.0, 0, UINT16_MAX);
+    p.nav.home_alt_m = (int32_t)llround(cfg->nav_home_alt_m);
+    p.aoa.enabled = (uint8_t)(cfg->aoa_enabled != 0);
+    p.aoa.v_ref_cm_s = to_cm16(cfg->aoa_v_ref_m_s);
+    p.aoa.v_enable_cm_s = to_cm16(cfg->aoa_v_enable_m_s);
+    p.aoa.load_max = to_q16(cfg->aoa_load_max);
+    p.aoa.aoa_normal_deg = to_q16(cfg->aoa_normal_deg);
+    p.aoa.aoa_normal_slope_deg = to_q16(cfg->aoa_normal_slope_deg);
+    p.aoa.aoa_inverted_deg = to_q16(cfg->aoa_inverted_deg);
+    p.aoa.aoa_inverted_slope_deg = to_q16(cfg->aoa_inverted_slope_deg);
+    p.aoa.trim_normal = to_q14(cfg->aoa_trim_normal);
+    p.aoa.trim_normal_slope = to_q14(cfg->aoa_trim_normal_slope);
+    p.aoa.trim_inverted = to_q14(cfg->aoa_trim_inverted);
+    p.aoa.trim_inverted_slope = to_q14(cfg->aoa_trim_inverted_slope);
+    p.alt = b->alt;
+    p.speed = b->spd;
+    b->modes_pitch_mode = (uint8_t)(cfg->modes_pitch_mode != 0);
+    ht_modes_bad_t bad;
+    if (ht_modes_init(&b->modes, &p, &b->law[b->modes_pitch_mode], b->waypoints,
+                      (uint16_t)cfg->waypoint_count, &bad) != 0) {
+        char name[48];
+        ht_modes_bad_name(&bad, name, (unsigned)sizeof name);
+        return fail(err, err_len, name);
+    }
+    ht_modes_reset(&b->modes_state, 0, 0);
+    b->modes_state.alt.integral_q20[0] = b->alt_state.integral_q20[0];
+    b->modes_state.alt.integral_q20[1] = b->alt_state.integral_q20[1];
+    b->modes_enabled = 1;
+    return 0;
+}
+
 int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t err_len)
 {
     if (b == NULL || cfg == NULL) {
@@ -221,6 +317,12 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (os_config_check(&b->out, &bad_channel) != OS_OK) {
         return fail(err, err_len, "output_stage");
     }
+    if (cfg->modes_enabled != 0) {
+        const int rc = modes_init(b, cfg, err, err_len);
+        if (rc != 0) {
+            return rc;
+        }
+    }
     b->ready = 1;
     if (err != NULL && err_len > 0) {
         err[0] = '\0';
@@ -230,11 +332,68 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
 
 /* --- the firmware control step (integer only) ------------------------- */
 
+/* Pulses of the output stage; flags a surface on an end point. */
+static void servo_out(const sil_board_t *b, const os_command_t *cmd, sil_fw_output_t *o)
+{
+    uint16_t pulses[OS_MAX_CHANNELS];
+    if (os_compute(&b->out, cmd, pulses) != OS_OK) {
+        return;
+    }
+    for (int i = 0; i < SIL_CH_COUNT; ++i) {
+        o->pulse_us[i] = pulses[i];
+        if (i < SIL_CH_THROTTLE &&
+            (pulses[i] <= b->out.ch[i].min_us || pulses[i] >= b->out.ch[i].max_us)) {
+            o->servo_clamped = 1;
+        }
+    }
+}
+
+/* The flight-modes step, as docs/flight-modes.md wires it on a board:
+ * receiver + GPS + IMU -> ht_modes_step -> ht_step -> ht_modes_surfaces ->
+ * output stage. The holds run inside ht_modes_step. */
+static void modes_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command_t *c,
+                       sil_fw_output_t *o)
+{
+    ht_modes_input_t in;
+    memset(&in, 0, sizeof in);
+    for (int i = 0; i < SIL_RC_COUNT; ++i) {
+        in.rc_us[i] = c->rc_us[i];
+    }
+    in.rc_count = (uint8_t)SIL_RC_COUNT;
+    in.rc_fresh = c->rc_fresh;
+    in.x = s->imu.down_q14[0];
+    in.y = s->imu.down_q14[1];
+    in.z = s->imu.down_q14[2];
+    in.gyro_rad_s[0] = s->imu.gyro_q11_rad_s[0];
+    in.gyro_rad_s[1] = s->imu.gyro_q11_rad_s[1];
+    in.gyro_rad_s[2] = s->imu.gyro_q11_rad_s[2];
+    in.airspeed_cm_s = s->imu.airspeed_cm_s;
+    in.north_cm = s->north_cm;
+    in.east_cm = s->east_cm;
+    in.alt_cm = s->altitude_cm;
+    in.climb_cm_s = s->climb_cm_s;
+    in.vel_north_cm_s = s->vel_north_cm_s;
+    in.vel_east_cm_s = s->vel_east_cm_s;
+    in.heading_north = s->heading_north;
+    in.heading_east = s->heading_east;
+    ht_modes_step(&b->modes, &b->modes_state, &in, &o->modes);
+    ht_step(&b->law[b->modes_pitch_mode], &o->modes.law_in, &o->law);
+    os_command_t cmd;
+    ht_modes_surfaces(&o->modes, &o->law, &cmd);
+    servo_out(b, &cmd, o);
+    o->throttle = o->modes.throttle;
+    o->pitch_cmd = o->modes.law_in.pitch_ratio;
+}
+
 void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command_t *c,
                  sil_fw_output_t *o)
 {
     memset(o, 0, sizeof(*o));
     if (b == NULL || s == NULL || c == NULL || !b->ready) {
+        return;
+    }
+    if (b->modes_enabled) {
+        modes_step(b, s, c, o);
         return;
     }
     /* outer loops; the altitude hold's integrator follows the measured
@@ -269,17 +428,7 @@ void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command
     cmd.elevator = o->law.elevator;
     cmd.rudder = o->law.rudder;
     cmd.throttle = throttle;
-    uint16_t pulses[OS_MAX_CHANNELS];
-    if (os_compute(&b->out, &cmd, pulses) != OS_OK) {
-        return;
-    }
-    for (int i = 0; i < SIL_CH_COUNT; ++i) {
-        o->pulse_us[i] = pulses[i];
-        if (i < SIL_CH_THROTTLE &&
-            (pulses[i] <= b->out.ch[i].min_us || pulses[i] >= b->out.ch[i].max_us)) {
-            o->servo_clamped = 1;
-        }
-    }
+    servo_out(b, &cmd, o);
     o->throttle = throttle;
     o->pitch_cmd = pitch;
 }
@@ -306,6 +455,12 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     fs.imu.airspeed_cm_s = to_cm16(s->airspeed_m_s);
     fs.altitude_cm = to_cm32(s->altitude_m);
     fs.climb_cm_s = to_cm32(s->climb_m_s);
+    fs.north_cm = to_cm32(s->north_m);
+    fs.east_cm = to_cm32(s->east_m);
+    fs.vel_north_cm_s = to_cm32(s->vel_north_m_s);
+    fs.vel_east_cm_s = to_cm32(s->vel_east_m_s);
+    fs.heading_north = to_q14(cos(s->heading_rad));
+    fs.heading_east = to_q14(sin(s->heading_rad));
 
     sil_fw_command_t fc;
     fc.turn_rate_rad_s = to_q11(c->turn_rate_rad_s);
@@ -317,6 +472,10 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     fc.speed_hold = (uint8_t)(c->speed_hold != 0);
     fc.inverted = (uint8_t)(c->inverted != 0);
     fc.pitch_mode = (uint8_t)(c->pitch_mode != 0);
+    for (int i = 0; i < SIL_RC_COUNT; ++i) {
+        fc.rc_us[i] = (uint16_t)to_fixed(c->rc_us[i], 1.0, 0, UINT16_MAX);
+    }
+    fc.rc_fresh = (uint8_t)(c->rc_fresh != 0);
 
     sil_fw_output_t o;
     sil_fw_step(b, &fs, &fc, &o);
@@ -333,4 +492,31 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     a->roll_error = from_q14(o.law.roll_error);
     a->pitch_error = from_q14(o.law.pitch_error);
     a->flags = (int32_t)o.law.flags | (o.servo_clamped ? 0x100 : 0);
+    if (b->modes_enabled) {
+        const ht_modes_output_t *m = &o.modes;
+        a->mode = m->mode;
+        a->selected_mode = m->selected_mode;
+        a->failsafe = m->failsafe;
+        a->rc_good = m->rc_good;
+        a->inverted_cmd = m->law_in.inverted;
+        a->nav_index = m->nav.index;
+        a->nav_arrived = m->nav.arrived;
+        a->nav_flags = m->nav.flags;
+        a->nav_reached = (int32_t)(b->modes_state.nav.reached > (uint32_t)INT32_MAX
+                                       ? (uint32_t)INT32_MAX
+                                       : b->modes_state.nav.reached);
+        a->turn_target_rad_s = from_q16(m->turn_target_rad_s);
+        a->turn_cmd_rad_s = from_q11(m->law_in.turn_rate_rad_s);
+        a->nav_turn_rate_rad_s = from_q16(m->nav.turn_rate_rad_s);
+        a->cross_track_m = (double)m->nav.cross_track_cm / 100.0;
+        a->nav_distance_m = (double)m->nav.distance_cm / 100.0;
+        a->target_altitude_m = (double)m->nav.target_alt_cm / 100.0;
+        a->leg_from_north_m = (double)b->modes_state.nav.from_north_cm / 100.0;
+        a->leg_from_east_m = (double)b->modes_state.nav.from_east_cm / 100.0;
+        a->blend = from_q14(m->blend);
+        a->aoa_pitch_offset = from_q16(m->aoa.pitch_offset);
+        a->aoa_trim = from_q14(m->aoa.elevator_trim);
+        a->aoa_loading = from_q16(m->aoa.loading);
+        a->aoa_active = m->aoa.active;
+    }
 }

@@ -12,7 +12,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-ABI_VERSION = 5
+ABI_VERSION = 6
+RC_COUNT = 8  # SIL_RC_COUNT
+MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
 
 _D = ctypes.c_double
 _I = ctypes.c_int32
@@ -35,13 +37,47 @@ class SilConfig(ctypes.Structure):
             "spd_max_integral_throttle",
             "trim_aileron", "trim_elevator", "trim_rudder")),
         ("control_rate_hz", _I),
+        # flight modes (ABI 6)
+        *((n, _I) for n in ("modes_enabled", "modes_pitch_mode", "nav_law", "nav_loop",
+                            "rc_loss_ticks", "rc_recover_ticks", "blend_ticks")),
+        *((n, _D) for n in (
+            "nav_turn_rate_max_deg_s", "nav_l1_m", "nav_arrival_radius_m", "nav_loiter_radius_m",
+            "nav_home_alt_m", "cruise_m_s",
+            "fbw_turn_rate_max_deg_s", "fbw_pitch_max", "fbw_deadband_us",
+            "turn_slew_deg_s2", "pitch_slew_per_s")),
+        ("aoa_enabled", _I),
+        *((n, _D) for n in (
+            "aoa_v_ref_m_s", "aoa_v_enable_m_s", "aoa_load_max",
+            "aoa_normal_deg", "aoa_normal_slope_deg", "aoa_inverted_deg", "aoa_inverted_slope_deg",
+            "aoa_trim_normal", "aoa_trim_normal_slope", "aoa_trim_inverted",
+            "aoa_trim_inverted_slope")),
+        ("waypoint_count", _I),
+        ("waypoints", (_D * 3) * MAX_WAYPOINTS),
     ]
+
+
+# Defaults of the ABI-6 flight-mode fields: modes off (the scenario's commands
+# fly the board, as before ABI 6).
+MODES_CONFIG_DEFAULTS: dict[str, Any] = {
+    "modes_enabled": 0, "modes_pitch_mode": 0, "nav_law": 0, "nav_loop": 1,
+    "rc_loss_ticks": 20, "rc_recover_ticks": 20, "blend_ticks": 20,
+    "nav_turn_rate_max_deg_s": 60.0, "nav_l1_m": 60.0, "nav_arrival_radius_m": 20.0,
+    "nav_loiter_radius_m": 60.0, "nav_home_alt_m": 100.0, "cruise_m_s": 15.0,
+    "fbw_turn_rate_max_deg_s": 60.0, "fbw_pitch_max": 0.5, "fbw_deadband_us": 8.0,
+    "turn_slew_deg_s2": 180.0, "pitch_slew_per_s": 1.0,
+    "aoa_enabled": 0, "aoa_v_ref_m_s": 15.0, "aoa_v_enable_m_s": 8.0, "aoa_load_max": 4.0,
+    "aoa_normal_deg": 0.0, "aoa_normal_slope_deg": 0.0, "aoa_inverted_deg": 0.0,
+    "aoa_inverted_slope_deg": 0.0, "aoa_trim_normal": 0.0, "aoa_trim_normal_slope": 0.0,
+    "aoa_trim_inverted": 0.0, "aoa_trim_inverted_slope": 0.0,
+    "waypoint_count": 0, "waypoints": [],
+}
 
 
 class SilSensors(ctypes.Structure):
     _fields_ = [(n, _D) for n in (
         "dcm_x", "dcm_y", "dcm_z", "gyro_x", "gyro_y", "gyro_z",
-        "airspeed_m_s", "altitude_m", "climb_m_s")]
+        "airspeed_m_s", "altitude_m", "climb_m_s",
+        "north_m", "east_m", "vel_north_m_s", "vel_east_m_s", "heading_rad")]
 
 
 class SilCommand(ctypes.Structure):
@@ -49,6 +85,8 @@ class SilCommand(ctypes.Structure):
         *((n, _D) for n in ("turn_rate_rad_s", "pitch_ratio", "altitude_m", "airspeed_m_s",
                             "throttle")),
         *((n, _I) for n in ("altitude_hold", "speed_hold", "inverted", "pitch_mode")),
+        ("rc_us", _I * RC_COUNT),
+        ("rc_fresh", _I),
     ]
 
 
@@ -58,6 +96,13 @@ class SilActuators(ctypes.Structure):
                             "law_aileron", "law_elevator", "law_rudder", "pitch_cmd",
                             "turn_rate_used_rad_s", "roll_error", "pitch_error")),
         ("flags", _I),
+        *((n, _I) for n in ("mode", "selected_mode", "failsafe", "rc_good", "inverted_cmd",
+                            "nav_index", "nav_arrived", "nav_flags", "nav_reached")),
+        *((n, _D) for n in ("turn_target_rad_s", "turn_cmd_rad_s", "nav_turn_rate_rad_s",
+                            "cross_track_m", "nav_distance_m", "target_altitude_m",
+                            "leg_from_north_m", "leg_from_east_m", "blend",
+                            "aoa_pitch_offset", "aoa_trim", "aoa_loading")),
+        ("aoa_active", _I),
     ]
 
 
@@ -103,10 +148,19 @@ class Board:
         self._lib = lib
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
+        full = {**MODES_CONFIG_DEFAULTS, **config}
         for name, _t in SilConfig._fields_:
-            if name not in config:
+            if name not in full:
                 raise BoardError(f"board config lacks '{name}'")
-            setattr(cfg, name, config[name])
+            if name == "waypoints":
+                wps = full[name]
+                if len(wps) > MAX_WAYPOINTS:
+                    raise BoardError(f"more than {MAX_WAYPOINTS} waypoints")
+                for i, wp in enumerate(wps):
+                    for k in range(3):
+                        cfg.waypoints[i][k] = float(wp[k])
+                continue
+            setattr(cfg, name, full[name])
         err = ctypes.create_string_buffer(64)
         if lib.sil_board_init(self._state, ctypes.byref(cfg), err, len(err)) != 0:
             raise BoardError(f"the board refused parameter '{err.value.decode()}'")

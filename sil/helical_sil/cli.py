@@ -109,7 +109,18 @@ def _progress(i: int, n: int, name: str, t0: float) -> None:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    m = run_one(Path(args.scenario), Path(args.out), args.board_lib, plots=not args.no_plots)
+    # --- PIL (issue 8): --target pil flies the firmware image under QEMU ---
+    if getattr(args, "target", "sil") == "pil":
+        from helical_sil import pil
+        with pil.as_sim_target(args.elf) as pil_runs:
+            m = run_one(Path(args.scenario), Path(args.out), args.board_lib,
+                        plots=not args.no_plots)
+        if pil.report(pil_runs[-1], Path(args.out)) != 0:
+            m["passed"] = False
+    else:
+        m = run_one(Path(args.scenario), Path(args.out), args.board_lib,
+                    plots=not args.no_plots)
+    # --- end PIL ---
     print(format_table([_summary_row(m)]))
     for c in m["pass_criteria"]:
         lim = " ".join(x for x in (f"min {c['min']}" if c["min"] is not None else "",
@@ -211,6 +222,14 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("scenario", help="scenario TOML file")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    # --- PIL (issue 8) ---
+    r.add_argument("--target", choices=("sil", "pil"), default="sil",
+                   help="sil: the host board library (default); pil: the STM32F405 HIL "
+                        "firmware image under qemu-system-arm (docs/hil-protocol.md)")
+    r.add_argument("--elf", default=None,
+                   help="--target pil: the HIL image (default: $HT_PIL_ELF or "
+                        "build/stm32f4/boards/stm32f4/ht_stm32f4_hil.elf)")
+    # --- end PIL ---
     r.set_defaults(func=cmd_run)
     b = sub.add_parser("batch", help="fly every scenario of a directory",
                        description="Fly every *.toml of a directory (not its sub-folders), "

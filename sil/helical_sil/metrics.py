@@ -36,6 +36,106 @@ def target_bank_deg(turn_rate_deg_s: float, airspeed_m_s: float, inverted: bool,
     return math.degrees(math.atan2(-tx, tz))
 
 
+# --- flight-mode metrics (issue 5) ------------------------------------------
+
+MODE_WAYPOINT, MODE_RTH = 2, 3
+NAV_F_LOITER = 1 << 4
+
+
+def straight_leg_mask(res: RunResult) -> np.ndarray:
+    """Steps flying a planned leg in waypoint mode, on its second half
+    (distance to the target <= half the leg), not circling: where
+    cross-track is measured."""
+    tel = res.telemetry
+    mc = res.scenario.modes
+    n = tel["t_s"].size
+    if mc is None or not mc.waypoints:
+        return np.zeros(n, dtype=bool)
+    wp = np.asarray(mc.waypoints, dtype=float)
+    idx = np.clip(tel["nav_index"].astype(int), 0, len(wp) - 1)
+    leg = np.hypot(wp[idx, 0] - tel["leg_from_north_m"], wp[idx, 1] - tel["leg_from_east_m"])
+    loiter = (tel["nav_flags"].astype(int) & NAV_F_LOITER) != 0
+    return ((tel["mode"] == MODE_WAYPOINT) & ~loiter & (leg > 1.0) &
+            (tel["nav_distance_m"] <= 0.5 * leg) & (tel["nav_arrived"] == 0))
+
+
+def _bank_rate_deg_s(res: RunResult) -> np.ndarray:
+    phi = np.unwrap(np.radians(res.telemetry["phi_deg"]))
+    d = np.diff(phi, prepend=phi[:1]) * res.scenario.control_rate_hz
+    return np.degrees(d)
+
+
+def _steady_alt_mask(res: RunResult) -> np.ndarray:
+    """Altitude-hold steps at least steady_after_s after their segment began."""
+    tel = res.telemetry
+    t = tel["t_s"]
+    m = np.zeros(t.size, dtype=bool)
+    for sg in res.segments:
+        m |= (t >= sg.t0 + res.scenario.steady_after_s - 1e-9) & (t < sg.t1 - 1e-9)
+    return m & (tel["altitude_hold"] > 0.5) & np.isfinite(tel["cmd_altitude_m"])
+
+
+def nav_metrics(res: RunResult, m: np.ndarray) -> dict[str, Any]:
+    """cross_track_rms/max_m, waypoints_reached, waypoint_miss_max_m,
+    bank_rate_rms_deg_s, altitude_rms_m over the steps of mask m."""
+    tel = res.telemetry
+    out: dict[str, Any] = {}
+    if not m.any():
+        return out
+    straight = straight_leg_mask(res) & m
+    xt = tel["cross_track_m"][straight]
+    out["cross_track_rms_m"] = _f(np.sqrt(np.mean(xt ** 2))) if xt.size else None
+    out["cross_track_max_m"] = _f(np.max(np.abs(xt))) if xt.size else None
+    out["straight_leg_s"] = _f(xt.size / res.scenario.control_rate_hz)
+    idx = np.nonzero(m)[0]
+    reached = tel["nav_reached"]
+    before = reached[idx[0] - 1] if idx[0] > 0 else 0.0
+    out["waypoints_reached"] = _f(reached[idx[-1]] - before)
+    arr = np.nonzero((tel["nav_arrived"] > 0.5) & m & (tel["mode"] == MODE_WAYPOINT))[0]
+    arr = arr[arr > 0]
+    mc = res.scenario.modes
+    if arr.size and mc is not None and mc.waypoints:
+        # how far from the waypoint the aircraft was when it counted as reached
+        wp = np.asarray(mc.waypoints, dtype=float)
+        which = np.clip(tel["nav_index"][arr - 1].astype(int), 0, len(wp) - 1)
+        miss = np.hypot(wp[which, 0] - tel["north_m"][arr], wp[which, 1] - tel["east_m"][arr])
+        out["waypoint_miss_max_m"] = _f(np.max(miss))
+        if res.scenario.modes is not None:
+            out["waypoints_within_radius"] = _f(
+                np.sum(miss <= res.scenario.modes.arrival_radius_m + 1e-6))
+    br = _bank_rate_deg_s(res)[m]
+    out["bank_rate_rms_deg_s"] = _f(np.sqrt(np.mean(br ** 2)))
+    am = _steady_alt_mask(res) & m
+    if am.any():
+        dh = tel["altitude_m"][am] - tel["cmd_altitude_m"][am]
+        out["altitude_rms_m"] = _f(np.sqrt(np.mean(dh ** 2)))
+    return out
+
+
+def failsafe_metrics(res: RunResult) -> dict[str, Any]:
+    """RC loss: when the failsafe took over, and how the return home ended."""
+    tel = res.telemetry
+    fs = np.nonzero(tel["failsafe"] > 0.5)[0]
+    if not fs.size:
+        return {}
+    t = tel["t_s"]
+    out: dict[str, Any] = {}
+    lost = np.nonzero(tel["rc_fresh"] < 0.5)[0]
+    if lost.size:
+        out["failsafe_entry_s"] = _f(t[fs[0]] - t[lost[0]])
+    d_home = np.hypot(tel["north_m"], tel["east_m"])
+    out["home_distance_end_m"] = _f(d_home[fs[-1]])
+    loiter = fs[(tel["nav_flags"][fs].astype(int) & NAV_F_LOITER) != 0]
+    if loiter.size:
+        t_l = t[loiter]
+        settled = loiter[t_l >= t_l[0] + 60.0]  # a minute after the loiter began
+        mc = res.scenario.modes
+        if settled.size and mc is not None:
+            out["loiter_radius_error_m"] = _f(np.max(np.abs(d_home[settled] -
+                                                            mc.loiter_radius_m)))
+    return out
+
+
 def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     tel = res.telemetry
     sc = res.scenario
@@ -46,6 +146,9 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
                            "pitch_mode": seg.pitch_mode}
     if not m.any():
         return out
+    if sc.modes is not None:
+        out["mode"] = seg.mode
+        out.update(nav_metrics(res, m))
     idx = np.nonzero(m)[0]
     ts = t[idx] - seg.t0
     w = tel["turn_rate_deg_s"][idx]
@@ -58,6 +161,15 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     entry = ts <= sc.entry_window_s
     cmd = seg.turn_rate_deg_s
     change = cmd - seg.prev_turn_rate_deg_s
+
+    if seg.guided:
+        # the turn rate comes from navigation: no constant command to compare with
+        out["altitude_change_m"] = _f(h[-1] - h[0])
+        out["sideslip_rms_deg"] = _f(np.sqrt(np.mean(beta ** 2)))
+        out["max_altitude_loss_m"] = _f(max(0.0, h[0] - np.min(h)))
+        sat = np.maximum.reduce([np.abs(tel[k][idx]) for k in ("aileron", "elevator", "rudder")])
+        out["surface_saturation_frac"] = _f(np.mean(sat >= SAT_LEVEL))
+        return out
 
     if steady.any():
         out["turn_rate_rmse_deg_s"] = _f(np.sqrt(np.mean((w[steady] - cmd) ** 2)))
@@ -135,6 +247,9 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
         "sim_speed_x_realtime": _f(sim_s / res.wall_s) if res.wall_s > 0 else None,
         "wall_s": _f(res.wall_s),
     }
+    if sc.modes is not None:
+        run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
+        run.update(failsafe_metrics(res))
     return {"scenario": sc.name, "aircraft": sc.aircraft.name, "seed": sc.seed,
             "control_rate_hz": sc.control_rate_hz, "sim_rate_hz": sc.sim_rate_hz,
             "trims": res.trims, "run": run, "segments": segs}

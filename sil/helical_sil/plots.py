@@ -48,6 +48,9 @@ def write_plots(res: RunResult, out: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(9, 4))
     ax.plot(t, tel["turn_rate_deg_s"], lw=1, label="actual (about earth vertical)")
     ax.plot(t, tel["cmd_turn_rate_deg_s"], lw=1.2, ls="--", label="command")
+    if res.scenario.modes is not None:
+        ax.plot(t, tel["turn_target_deg_s"], lw=0.8, ls="-.",
+                label="mode target (nav / stick, before the slew)")
     ax.plot(t, tel["turn_rate_used_deg_s"], lw=0.8, ls=":", label="used by the law")
     ax.set_ylabel("turn rate (deg/s)")
     ax.set_xlabel("t (s)")
@@ -87,6 +90,24 @@ def write_plots(res: RunResult, out: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(6, 6))
     sc = ax.scatter(tel["east_m"], tel["north_m"], c=tel["altitude_m"], s=2, cmap="viridis")
     ax.plot(tel["east_m"][:1], tel["north_m"][:1], "k^", label="start")
+    mc = res.scenario.modes
+    if mc is not None and mc.waypoints:
+        # the planned path: legs from the start point through the list (and back
+        # round when looping), waypoints with their arrival circles
+        wn = [0.0] + [w[0] for w in mc.waypoints] + ([mc.waypoints[0][0]] if mc.loop else [])
+        we = [0.0] + [w[1] for w in mc.waypoints] + ([mc.waypoints[0][1]] if mc.loop else [])
+        ax.plot(we, wn, color="tab:red", lw=1, ls="--", label="planned legs")
+        for i, w in enumerate(mc.waypoints):
+            ax.add_patch(plt.Circle((w[1], w[0]), mc.arrival_radius_m, fill=False,
+                                    color="tab:red", lw=0.6))
+            ax.annotate(str(i), (w[1], w[0]), textcoords="offset points", xytext=(4, 4),
+                        fontsize=8, color="tab:red")
+    if mc is not None and (tel["failsafe"] > 0.5).any():
+        ax.add_patch(plt.Circle((0.0, 0.0), mc.loiter_radius_m, fill=False, color="tab:orange",
+                                lw=0.8, ls=":"))
+        fs = tel["failsafe"] > 0.5
+        ax.plot(tel["east_m"][fs], tel["north_m"][fs], ".", ms=1, color="tab:orange",
+                label="failsafe (RTH, loiter)")
     fig.colorbar(sc, ax=ax, label="altitude (m)")
     ax.set_xlabel("east (m)")
     ax.set_ylabel("north (m)")

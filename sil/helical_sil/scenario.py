@@ -52,11 +52,33 @@ SEGMENT_METRICS = (
     "entry_altitude_loss_m", "heading_disturbance_deg", "altitude_error_max_m",
     "path_altitude_loss_m",
     "airspeed_error_max_m_s",
+    # flight modes (issue 5)
+    "cross_track_rms_m", "cross_track_max_m", "waypoints_reached", "waypoint_miss_max_m",
+    "bank_rate_rms_deg_s", "altitude_rms_m",
 )
 RUN_METRICS = (
     "max_altitude_loss_m", "surface_saturation_frac", "sideslip_rms_deg",
     "sim_speed_x_realtime", "altitude_error_max_m",
+    # flight modes (issue 5)
+    "altitude_change_m", "cross_track_rms_m", "cross_track_max_m", "waypoints_reached",
+    "waypoints_within_radius", "waypoint_miss_max_m", "bank_rate_rms_deg_s", "altitude_rms_m",
+    "failsafe_entry_s", "home_distance_end_m", "loiter_radius_error_m",
 )
+
+# --- flight modes (issue 5): [modes], [nav], [fbw], [aoa], [[waypoint]], [[rc]] ---
+MODE_PULSES_US = {"manual": 1000, "fbw": 1500, "waypoint": 2000, "rth": 2150}
+MODES_KEYS = ("pitch_mode", "rc_loss_ticks", "rc_recover_ticks", "blend_ticks",
+              "turn_slew_deg_s2", "pitch_slew_per_s", "cruise_m_s")
+NAV_KEYS = ("law", "turn_rate_max_deg_s", "l1_m", "arrival_radius_m", "loiter_radius_m",
+            "home_alt_m", "loop")
+NAV_LAWS = ("heading", "l1")
+FBW_KEYS = ("turn_rate_max_deg_s", "pitch_max", "deadband_us")
+AOA_KEYS = ("enabled", "v_ref_m_s", "v_enable_m_s", "load_max",
+            "aoa_normal_deg", "aoa_normal_slope_deg", "aoa_inverted_deg", "aoa_inverted_slope_deg",
+            "trim_normal", "trim_normal_slope", "trim_inverted", "trim_inverted_slope")
+RC_KEYS = ("t_s", "label", "mode", "mode_us", "aileron", "turn_rate_deg_s", "elevator", "rudder",
+           "throttle", "inverted", "link")
+WAYPOINT_KEYS = ("north_m", "east_m", "alt_m")
 
 
 class ScenarioError(ValueError):
@@ -78,6 +100,47 @@ class Command:
 
 
 @dataclass
+class RcEntry:
+    """One [[rc]] entry: what the scripted pilot's transmitter sends from t_s on.
+    Fields left None keep their previous value."""
+    t_s: float
+    label: str
+    mode_us: int | None = None
+    aileron: float | None = None     # stick, [-1, 1], + = right
+    turn_rate_deg_s: float | None = None  # FBW: the aileron stick that commands this rate
+    elevator: float | None = None    # stick, [-1, 1], + = pull (climb)
+    rudder: float | None = None
+    throttle: float | None = None    # [0, 1]
+    inverted: bool | None = None
+    link: bool | None = None         # False: receiver dead (rc_fresh = 0)
+
+
+@dataclass
+class ModesConfig:
+    """The flight modes' parameters (physical units, the board's names)."""
+    pitch_mode: str = "earth_frame"
+    rc_loss_ticks: int = 20
+    rc_recover_ticks: int = 20
+    blend_ticks: int = 20
+    turn_slew_deg_s2: float = 180.0
+    pitch_slew_per_s: float = 1.0
+    cruise_m_s: float | None = None  # default: the initial airspeed
+    law: str = "heading"
+    nav_turn_rate_max_deg_s: float = 60.0
+    l1_m: float = 60.0
+    arrival_radius_m: float = 20.0
+    loiter_radius_m: float = 60.0
+    home_alt_m: float | None = None  # default: the initial altitude
+    loop: bool = True
+    fbw_turn_rate_max_deg_s: float = 60.0
+    fbw_pitch_max: float = 0.5
+    fbw_deadband_us: float = 8.0
+    aoa: dict[str, float] = field(default_factory=dict)
+    waypoints: list[tuple[float, float, float]] = field(default_factory=list)
+    rc: list[RcEntry] = field(default_factory=list)
+
+
+@dataclass
 class PassCriterion:
     metric: str
     segment: str  # a command label, or "run"
@@ -93,6 +156,8 @@ class Aircraft:
     gains: dict[str, float]
     altitude_m: float
     airspeed_m_s: float
+    # defaults of the flight-mode tables ([modes], [nav], [fbw], [aoa]) for this airframe
+    mode_tables: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 @dataclass
@@ -122,6 +187,7 @@ class Scenario:
     entry_window_s: float = 6.0
     commands: list[Command] = field(default_factory=list)
     criteria: list[PassCriterion] = field(default_factory=list)
+    modes: ModesConfig | None = None  # flight modes: the [[rc]] timeline flies the board
 
 
 # --- typed getters ----------------------------------------------------------
@@ -228,7 +294,8 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
         raise ScenarioError(
             f"{_where(src, key)}: unknown aircraft {name!r} (known: {', '.join(known) or 'none'})")
     doc = _load_toml(p)
-    _check_keys(p, "", doc, ("model", "description", "gains", "initial"))
+    _check_keys(p, "", doc, ("model", "description", "gains", "initial", "modes", "nav", "fbw",
+                             "aoa"))
     model = _str(p, "model", doc.get("model", name))
     desc = _str(p, "description", doc.get("description", ""))
     gains = dict(GAIN_DEFAULTS)
@@ -237,14 +304,146 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
     _check_keys(p, "initial", init, ("altitude_m", "airspeed_m_s"))
     alt = _num(p, "initial.altitude_m", init.get("altitude_m", 1500.0), 10.0, 20000.0)
     spd = _num(p, "initial.airspeed_m_s", init.get("airspeed_m_s", gains["v_ref"]), 5.0, 300.0)
+    tables = {k: _table(p, k, doc[k]) for k in ("modes", "nav", "fbw", "aoa") if k in doc}
+    # parse once here so a bad aircraft file names its own key
+    _parse_mode_tables(p, tables, ModesConfig())
     return Aircraft(name=name, model=model, description=desc, gains=gains, altitude_m=alt,
-                    airspeed_m_s=spd)
+                    airspeed_m_s=spd, mode_tables=tables)
+
+
+def _parse_mode_tables(src: Path, tables: dict[str, dict[str, Any]], mc: ModesConfig) -> None:
+    """[modes], [nav], [fbw], [aoa] into mc (keys given override mc's values)."""
+    t = tables.get("modes", {})
+    _check_keys(src, "modes", t, MODES_KEYS)
+    if "pitch_mode" in t:
+        mc.pitch_mode = _str(src, "modes.pitch_mode", t["pitch_mode"], PITCH_MODES)
+    for k in ("rc_loss_ticks", "rc_recover_ticks", "blend_ticks"):
+        if k in t:
+            setattr(mc, k, _int(src, f"modes.{k}", t[k], 1, 10000))
+    if "turn_slew_deg_s2" in t:
+        mc.turn_slew_deg_s2 = _num(src, "modes.turn_slew_deg_s2", t["turn_slew_deg_s2"], 1, 10000)
+    if "pitch_slew_per_s" in t:
+        mc.pitch_slew_per_s = _num(src, "modes.pitch_slew_per_s", t["pitch_slew_per_s"], 0.01, 64)
+    if "cruise_m_s" in t:
+        mc.cruise_m_s = _num(src, "modes.cruise_m_s", t["cruise_m_s"], 1.0, 327.0)
+    t = tables.get("nav", {})
+    _check_keys(src, "nav", t, NAV_KEYS)
+    if "law" in t:
+        mc.law = _str(src, "nav.law", t["law"], NAV_LAWS)
+    if "turn_rate_max_deg_s" in t:
+        mc.nav_turn_rate_max_deg_s = _num(src, "nav.turn_rate_max_deg_s", t["turn_rate_max_deg_s"],
+                                          1, 360)
+    if "l1_m" in t:
+        mc.l1_m = _num(src, "nav.l1_m", t["l1_m"], 5, 600)
+    if "arrival_radius_m" in t:
+        mc.arrival_radius_m = _num(src, "nav.arrival_radius_m", t["arrival_radius_m"], 1, 5000)
+    if "loiter_radius_m" in t:
+        mc.loiter_radius_m = _num(src, "nav.loiter_radius_m", t["loiter_radius_m"], 5, 5000)
+    if "home_alt_m" in t:
+        mc.home_alt_m = _num(src, "nav.home_alt_m", t["home_alt_m"], 10.0, 20000.0)
+    if "loop" in t:
+        mc.loop = _bool(src, "nav.loop", t["loop"])
+    t = tables.get("fbw", {})
+    _check_keys(src, "fbw", t, FBW_KEYS)
+    if "turn_rate_max_deg_s" in t:
+        mc.fbw_turn_rate_max_deg_s = _num(src, "fbw.turn_rate_max_deg_s", t["turn_rate_max_deg_s"],
+                                          1, 360)
+    if "pitch_max" in t:
+        mc.fbw_pitch_max = _num(src, "fbw.pitch_max", t["pitch_max"], 0.01, 4.0)
+    if "deadband_us" in t:
+        mc.fbw_deadband_us = _num(src, "fbw.deadband_us", t["deadband_us"], 0, 90)
+    t = tables.get("aoa", {})
+    _check_keys(src, "aoa", t, AOA_KEYS)
+    for k, v in t.items():
+        key = f"aoa.{k}"
+        if k == "enabled":
+            mc.aoa[k] = 1.0 if _bool(src, key, v) else 0.0
+        elif k in ("v_ref_m_s", "v_enable_m_s"):
+            mc.aoa[k] = _num(src, key, v, 1.0, 327.0)
+        elif k == "load_max":
+            mc.aoa[k] = _num(src, key, v, 1.0, 8.0)
+        elif k.startswith("aoa_"):
+            mc.aoa[k] = _num(src, key, v, -45.0, 45.0)
+        else:
+            mc.aoa[k] = _num(src, key, v, -1.0, 1.0)
+
+
+def _parse_modes(src: Path, doc: dict[str, Any], ac: Aircraft, duration: float,
+                 labels: set[str]) -> ModesConfig:
+    mc = ModesConfig()
+    _parse_mode_tables(src, ac.mode_tables, mc)   # the airframe's defaults
+    aoa_defaults = dict(mc.aoa)
+    tables = {k: _table(src, k, doc[k]) for k in ("modes", "nav", "fbw", "aoa") if k in doc}
+    mc.aoa = {}
+    _parse_mode_tables(src, tables, mc)           # the scenario's values
+    mc.aoa = {**aoa_defaults, **mc.aoa}
+    wps = doc.get("waypoint", [])
+    if not isinstance(wps, list):
+        raise ScenarioError(f"{_where(src, 'waypoint')}: expected an array of tables [[waypoint]]")
+    if len(wps) > 64:
+        raise ScenarioError(f"{_where(src, 'waypoint')}: at most 64 waypoints, got {len(wps)}")
+    for i, w in enumerate(wps):
+        pre = f"waypoint[{i}]"
+        w = _table(src, pre, w)
+        _check_keys(src, pre, w, WAYPOINT_KEYS)
+        for k in ("north_m", "east_m"):
+            if k not in w:
+                raise ScenarioError(f"{_where(src, pre + '.' + k)}: missing (required)")
+        mc.waypoints.append((_num(src, pre + ".north_m", w["north_m"], -1e6, 1e6),
+                             _num(src, pre + ".east_m", w["east_m"], -1e6, 1e6),
+                             _num(src, pre + ".alt_m", w["alt_m"], 10.0, 20000.0)
+                             if "alt_m" in w else math.nan))
+    rcs = doc.get("rc", [])
+    if not isinstance(rcs, list) or not rcs:
+        raise ScenarioError(f"{_where(src, 'rc')}: flight modes need an [[rc]] timeline "
+                            "(an array of tables, at least one entry)")
+    last_t = -1.0
+    for i, c in enumerate(rcs):
+        pre = f"rc[{i}]"
+        c = _table(src, pre, c)
+        _check_keys(src, pre, c, RC_KEYS)
+        if "t_s" not in c:
+            raise ScenarioError(f"{_where(src, pre + '.t_s')}: missing (required)")
+        t = _num(src, pre + ".t_s", c["t_s"], 0.0, duration)
+        if t < last_t:
+            raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
+        last_t = t
+        label = _str(src, pre + ".label", c.get("label", f"rc{i}"))
+        if label in labels or label == "run":
+            raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
+        labels.add(label)
+        e = RcEntry(t_s=t, label=label)
+        if "mode" in c and "mode_us" in c:
+            raise ScenarioError(f"{_where(src, pre + '.mode_us')}: give either mode or mode_us, not both")
+        if "mode" in c:
+            e.mode_us = MODE_PULSES_US[_str(src, pre + ".mode", c["mode"],
+                                            tuple(MODE_PULSES_US))]
+        if "mode_us" in c:
+            e.mode_us = _int(src, pre + ".mode_us", c["mode_us"], 0, 3000)
+        if "aileron" in c and "turn_rate_deg_s" in c:
+            raise ScenarioError(
+                f"{_where(src, pre + '.turn_rate_deg_s')}: give either aileron or turn_rate_deg_s, not both")
+        for k in ("aileron", "elevator", "rudder"):
+            if k in c:
+                setattr(e, k, _num(src, f"{pre}.{k}", c[k], -1.0, 1.0))
+        if "turn_rate_deg_s" in c:
+            e.turn_rate_deg_s = _num(src, pre + ".turn_rate_deg_s", c["turn_rate_deg_s"],
+                                     -mc.fbw_turn_rate_max_deg_s, mc.fbw_turn_rate_max_deg_s)
+        if "throttle" in c:
+            e.throttle = _num(src, pre + ".throttle", c["throttle"], 0.0, 1.0)
+        if "inverted" in c:
+            e.inverted = _bool(src, pre + ".inverted", c["inverted"])
+        if "link" in c:
+            e.link = _bool(src, pre + ".link", c["link"])
+        mc.rc.append(e)
+    return mc
 
 
 # --- scenario -----------------------------------------------------------------
 
 TOP_KEYS = ("aircraft", "description", "duration_s", "seed", "control_rate_hz", "sim_rate_hz",
-            "initial", "gains", "wind", "sensors", "command", "pass", "metrics")
+            "initial", "gains", "wind", "sensors", "command", "pass", "metrics",
+            "modes", "nav", "fbw", "aoa", "waypoint", "rc")
 COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb_m_s",
                 "airspeed_m_s",
                 "throttle", "inverted", "pitch_mode")
@@ -311,11 +510,27 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     sc.entry_window_s = _num(src, "metrics.entry_window_s", met.get("entry_window_s", 6.0), 0.5,
                              600.0)
 
+    labels: set[str] = set()
+    if "rc" in doc or "modes" in doc:
+        if "command" in doc:
+            raise ScenarioError(f"{_where(src, 'command')}: a flight-modes scenario ([modes] or "
+                                "[[rc]]) is flown by its [[rc]] timeline, not by [[command]]")
+        sc.modes = _parse_modes(src, doc, ac, duration, labels)
+        if sc.modes.cruise_m_s is None:
+            sc.modes.cruise_m_s = sc.airspeed_m_s
+        if sc.modes.home_alt_m is None:
+            sc.modes.home_alt_m = sc.altitude_m
+        sc.modes.waypoints = [(n, e, sc.altitude_m if math.isnan(a) else a)
+                              for n, e, a in sc.modes.waypoints]
+    else:
+        for k in ("nav", "fbw", "aoa", "waypoint"):
+            if k in doc:
+                raise ScenarioError(f"{_where(src, k)}: only in a flight-modes scenario "
+                                    "(give an [[rc]] timeline)")
     cmds = doc.get("command", [])
     if not isinstance(cmds, list):
         raise ScenarioError(f"{_where(src, 'command')}: expected an array of tables [[command]]")
     last_t = -1.0
-    labels: set[str] = set()
     for i, c in enumerate(cmds):
         pre = f"command[{i}]"
         c = _table(src, pre, c)

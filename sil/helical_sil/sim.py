@@ -41,7 +41,15 @@ COLUMNS = (
     "inverted", "pitch_mode", "pitch_cmd", "roll_error", "pitch_error",
     "law_aileron", "law_elevator", "law_rudder", "aileron", "elevator", "rudder", "throttle",
     "flags", "north_m", "east_m",
+    # flight modes (zero when a scenario has none)
+    "mode", "failsafe", "rc_fresh", "nav_index", "nav_arrived", "nav_reached", "nav_flags",
+    "cross_track_m", "nav_distance_m", "leg_from_north_m", "leg_from_east_m",
+    "turn_target_deg_s", "nav_turn_rate_deg_s", "blend", "aoa_pitch_offset", "aoa_trim",
+    "aoa_active",
 )
+MODE_NAMES = ("manual", "fbw", "waypoint", "rth")
+MODE_THRESHOLDS_US = (1250, 1750, 2100)  # modes.h defaults (the board uses them)
+RC_CENTRE_US, RC_TRAVEL_US = 1500, 500
 
 
 @dataclass
@@ -58,6 +66,9 @@ class Segment:
     inverted: bool
     prev_inverted: bool
     pitch_mode: str
+    mode: str = ""        # flight modes: the mode the switch selects ("" = no modes)
+    guided: bool = False  # waypoint / RTH / RC lost: the turn rate comes from navigation
+    link: bool = True
 
 
 @dataclass
@@ -155,6 +166,125 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
     }
 
 
+def mode_of_pulse(us: int) -> str:
+    return MODE_NAMES[sum(us >= t for t in MODE_THRESHOLDS_US)]
+
+
+def stick_pulse_us(stick: float, deadband_us: float) -> int:
+    """The pulse of a stick position that fbw.c reads back as `stick` (outside
+    the deadband the reading is (|d| - deadband) / (travel - deadband))."""
+    if stick == 0.0:
+        return RC_CENTRE_US
+    d = abs(stick) * (RC_TRAVEL_US - deadband_us) + deadband_us
+    return int(round(RC_CENTRE_US + math.copysign(d, stick)))
+
+
+def stick_of_pulse(us: int, deadband_us: float) -> float:
+    d = us - RC_CENTRE_US
+    if abs(d) <= deadband_us:
+        return 0.0
+    return max(-1.0, min(1.0, math.copysign((abs(d) - deadband_us) /
+                                            (RC_TRAVEL_US - deadband_us), d)))
+
+
+@dataclass
+class RcState:
+    mode_us: int = 1000
+    aileron_us: int = RC_CENTRE_US
+    elevator_us: int = RC_CENTRE_US
+    rudder_us: int = RC_CENTRE_US
+    throttle_us: int = 1000
+    inverted: bool = False
+    link: bool = True
+
+    def pulses(self) -> list[int]:
+        # inputs: 0 aileron, 1 elevator, 2 throttle, 3 rudder, 4 mode, 5 inverted (modes.h)
+        return [self.aileron_us, self.elevator_us, self.throttle_us, self.rudder_us,
+                self.mode_us, 2000 if self.inverted else 1000, 1500, 1500]
+
+
+def rc_timeline(sc: Scenario, throttle_trim: float) -> list[RcState]:
+    """The transmitter state after each [[rc]] entry (fields persist)."""
+    mc = sc.modes
+    assert mc is not None
+    cur = RcState(throttle_us=int(round(1000 + 1000 * throttle_trim)))
+    out = []
+    for e in mc.rc:
+        cur = RcState(**vars(cur))
+        if e.mode_us is not None:
+            cur.mode_us = e.mode_us
+        if e.aileron is not None:
+            cur.aileron_us = int(round(RC_CENTRE_US + RC_TRAVEL_US * e.aileron))
+        if e.turn_rate_deg_s is not None:
+            cur.aileron_us = stick_pulse_us(e.turn_rate_deg_s / mc.fbw_turn_rate_max_deg_s,
+                                            mc.fbw_deadband_us)
+        if e.elevator is not None:
+            cur.elevator_us = int(round(RC_CENTRE_US + RC_TRAVEL_US * e.elevator))
+        if e.rudder is not None:
+            cur.rudder_us = int(round(RC_CENTRE_US + RC_TRAVEL_US * e.rudder))
+        if e.throttle is not None:
+            cur.throttle_us = int(round(1000 + 1000 * e.throttle))
+        if e.inverted is not None:
+            cur.inverted = e.inverted
+        if e.link is not None:
+            cur.link = e.link
+        out.append(cur)
+    return out
+
+
+def _mode_segments(sc: Scenario, rcs: list[RcState]) -> list[Segment]:
+    mc = sc.modes
+    assert mc is not None
+    segs: list[Segment] = []
+    prev_turn, prev_inv = 0.0, False
+    if mc.rc[0].t_s > 0.0:
+        segs.append(Segment("start", 0.0, 0.0, 0.0, 0.0, False, sc.altitude_m, 0.0, 0.0, False,
+                            False, mc.pitch_mode, "manual", False, True))
+    for e, r in zip(mc.rc, rcs):
+        mode = mode_of_pulse(r.mode_us) if r.link else "rth"
+        guided = mode in ("waypoint", "rth")
+        turn = pitch = 0.0
+        if mode == "fbw":
+            turn = stick_of_pulse(r.aileron_us, mc.fbw_deadband_us) * mc.fbw_turn_rate_max_deg_s
+            pitch = stick_of_pulse(r.elevator_us, mc.fbw_deadband_us) * mc.fbw_pitch_max
+        inv = r.inverted and r.link and mode != "manual"
+        segs.append(Segment(e.label, e.t_s, 0.0, turn, prev_turn, guided,
+                            mc.home_alt_m if mode == "rth" else sc.altitude_m, 0.0, pitch,
+                            inv, prev_inv, mc.pitch_mode, mode, guided, r.link))
+        prev_turn, prev_inv = turn, inv
+    for i, sg in enumerate(segs):
+        sg.t1 = segs[i + 1].t0 if i + 1 < len(segs) else sc.duration_s
+    return [sg for sg in segs if sg.t1 > sg.t0 or sg is segs[-1]]
+
+
+def modes_board_config(sc: Scenario) -> dict[str, object]:
+    mc = sc.modes
+    assert mc is not None
+    a = mc.aoa
+    return {
+        "modes_enabled": 1, "modes_pitch_mode": 1 if mc.pitch_mode == "tilt_cross" else 0,
+        "nav_law": 1 if mc.law == "l1" else 0, "nav_loop": int(mc.loop),
+        "rc_loss_ticks": mc.rc_loss_ticks, "rc_recover_ticks": mc.rc_recover_ticks,
+        "blend_ticks": mc.blend_ticks,
+        "nav_turn_rate_max_deg_s": mc.nav_turn_rate_max_deg_s, "nav_l1_m": mc.l1_m,
+        "nav_arrival_radius_m": mc.arrival_radius_m, "nav_loiter_radius_m": mc.loiter_radius_m,
+        "nav_home_alt_m": mc.home_alt_m, "cruise_m_s": mc.cruise_m_s,
+        "fbw_turn_rate_max_deg_s": mc.fbw_turn_rate_max_deg_s, "fbw_pitch_max": mc.fbw_pitch_max,
+        "fbw_deadband_us": mc.fbw_deadband_us,
+        "turn_slew_deg_s2": mc.turn_slew_deg_s2, "pitch_slew_per_s": mc.pitch_slew_per_s,
+        "aoa_enabled": int(a.get("enabled", 0.0)),
+        "aoa_v_ref_m_s": a.get("v_ref_m_s", sc.gains["v_ref"]),
+        "aoa_v_enable_m_s": a.get("v_enable_m_s", sc.gains["v_ref"] / 2.0),
+        "aoa_load_max": a.get("load_max", 4.0),
+        **{k: a.get(k, 0.0) for k in (
+            "aoa_normal_deg", "aoa_normal_slope_deg", "aoa_inverted_deg",
+            "aoa_inverted_slope_deg")},
+        **{f"aoa_{k}": a.get(k, 0.0) for k in (
+            "trim_normal", "trim_normal_slope", "trim_inverted", "trim_inverted_slope")},
+        "waypoint_count": len(mc.waypoints), "waypoints": list(mc.waypoints),
+    }
+
+
 def _segments(sc: Scenario) -> list[Segment]:
     cur = {"turn": 0.0, "alt_hold": True, "alt": sc.altitude_m, "climb": 0.0, "pitch": 0.0,
            "inv": False, "mode": "earth_frame"}
@@ -194,12 +324,18 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     trims = {"aileron": float(trim_ail), "elevator": float(trim_elev), "rudder": float(trim_rud),
              "throttle": float(fdm["fcs/throttle-cmd-norm[0]"]),
              "pitch_trim": float(fdm["fcs/pitch-trim-cmd-norm"])}
-    board = Board(board_config(sc, trims), board_lib)
+    cfg: dict[str, object] = dict(board_config(sc, trims))
+    rcs: list[RcState] = []
+    if sc.modes is not None:
+        cfg.update(modes_board_config(sc))
+        rcs = rc_timeline(sc, trims["throttle"])
+    board = Board(cfg, board_lib)
 
     rng = np.random.Generator(np.random.PCG64(sc.seed))
     bias = sc.gyro_bias_rad_s * rng.choice(np.array([-1.0, 1.0]), size=3)
 
-    segs = _segments(sc)
+    segs = _segments(sc) if sc.modes is None else _mode_segments(sc, rcs)
+    rc_ptr = -1
     n_sub = sc.sim_rate_hz // sc.control_rate_hz
     dt_ctl = 1.0 / sc.control_rate_hz
     steps = int(round(sc.duration_s * sc.control_rate_hz))
@@ -231,6 +367,13 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
                 cmd.speed_hold, cmd.throttle = 0, c.throttle
             cmd_ptr += 1
         seg = segs[seg_i]
+        if sc.modes is not None:
+            while rc_ptr + 1 < len(rcs) and sc.modes.rc[rc_ptr + 1].t_s <= t + 1e-9:
+                rc_ptr += 1
+                r = rcs[rc_ptr]
+                for i, us in enumerate(r.pulses()):
+                    cmd.rc_us[i] = us
+                cmd.rc_fresh = int(r.link)
         cmd.turn_rate_rad_s = math.radians(seg.turn_rate_deg_s)
         cmd.altitude_hold = int(seg.altitude_hold)
         cmd.pitch_ratio = seg.pitch
@@ -271,6 +414,11 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         m = fifo[0]
         (sens.dcm_x, sens.dcm_y, sens.dcm_z, sens.gyro_x, sens.gyro_y, sens.gyro_z,
          sens.airspeed_m_s, sens.altitude_m, sens.climb_m_s) = m
+        vn = fdm["velocities/v-north-fps"] * FT
+        ve = fdm["velocities/v-east-fps"] * FT
+        # GPS: position from the start point and ground velocity (not delayed)
+        sens.north_m, sens.east_m, sens.vel_north_m_s, sens.vel_east_m_s = north, east, vn, ve
+        sens.heading_rad = psi
         a = board.step()
         ail, elev, rud = frames.surfaces_to_jsbsim(a.aileron, a.elevator, a.rudder)
         fdm["fcs/aileron-cmd-norm"] = ail
@@ -279,21 +427,34 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         for e in range(n_engines):
             fdm[f"fcs/throttle-cmd-norm[{e}]"] = a.throttle
 
+        cmd_turn_deg_s = seg.turn_rate_deg_s
+        log_alt_hold, log_inv = seg.altitude_hold, seg.inverted
+        log_speed_hold = bool(cmd.speed_hold)
+        if sc.modes is not None:
+            cmd_turn_deg_s = math.degrees(a.turn_cmd_rad_s)
+            log_alt_hold = a.mode in (2, 3)
+            log_inv = bool(a.inverted_cmd)
+            log_speed_hold = log_alt_hold
+            alt_target = a.target_altitude_m
+            target_airspeed = float(sc.modes.cruise_m_s or 0.0)
         log[k] = (
-            t, seg_i, seg.turn_rate_deg_s,
+            t, seg_i, cmd_turn_deg_s,
             math.degrees(frames.earth_turn_rate(p, q, r, phi, theta)),
             math.degrees(a.turn_rate_used_rad_s),
             math.degrees(phi), math.degrees(theta), math.degrees(psi), h,
-            alt_target if seg.altitude_hold else math.nan, float(seg.altitude_hold),
-            hdot, vt, target_airspeed if cmd.speed_hold else math.nan,
+            alt_target if log_alt_hold else math.nan, float(log_alt_hold),
+            hdot, vt, target_airspeed if log_speed_hold else math.nan,
             fdm["aero/beta-deg"], fdm["aero/alpha-deg"], p, q, r, x, y, z,
             m[3], m[4], m[5], m[6],
-            float(seg.inverted), float(cmd.pitch_mode), a.pitch_cmd, a.roll_error, a.pitch_error,
+            float(log_inv), float(cmd.pitch_mode), a.pitch_cmd, a.roll_error, a.pitch_error,
             a.law_aileron, a.law_elevator, a.law_rudder, a.aileron, a.elevator, a.rudder,
             a.throttle, float(a.flags), north, east,
+            float(a.mode), float(a.failsafe), float(cmd.rc_fresh), float(a.nav_index),
+            float(a.nav_arrived), float(a.nav_reached), float(a.nav_flags), a.cross_track_m,
+            a.nav_distance_m, a.leg_from_north_m, a.leg_from_east_m,
+            math.degrees(a.turn_target_rad_s), math.degrees(a.nav_turn_rate_rad_s), a.blend,
+            a.aoa_pitch_offset, a.aoa_trim, float(a.aoa_active),
         )
-        vn = fdm["velocities/v-north-fps"] * FT
-        ve = fdm["velocities/v-east-fps"] * FT
         for _ in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")

@@ -1,0 +1,181 @@
+"""Processor-in-the-loop (issue 8): the HIL firmware image under QEMU against
+the host SIL, step by step.
+
+The QEMU tests need qemu-system-arm and the HIL image; they run under the
+ctest entry `pil_short` (label pil), which builds the image and sets
+HT_PIL_ELF (and HT_PIL_REQUIRE=1: a missing piece is then a failure, not a
+skip). The protocol tests at the top run everywhere.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from helical_sil import metrics as met
+from helical_sil import pil, sim
+from helical_sil.scenario import load_scenario
+
+SIL_DIR = Path(__file__).resolve().parents[1]
+SHORT = SIL_DIR / "scenarios" / "pil" / "default_short.toml"
+SURFACES = ("aileron", "elevator", "rudder", "throttle")
+
+
+# --- the host side of the protocol (no QEMU) -----------------------------------
+
+def test_crc_and_frame_layout() -> None:
+    assert pil.crc16(b"123456789") == 0x29B1
+    f = pil.encode(0x20, bytes(range(3)))
+    assert f[:4] == bytes((0xA5, 0x5A, 3, 0x20)) and len(f) == 3 + 6
+    c = pil.crc16(f[2:-2])
+    assert f[-2:] == bytes((c & 0xFF, c >> 8))
+
+
+def test_decoder_resynchronises_and_counts() -> None:
+    d = pil.Decoder({0xA0: 2, 0x81: 0})
+    good = pil.encode(0xA0, b"\x01\x02")
+    bad_crc = bytearray(good)
+    bad_crc[4] ^= 1
+    wrong_len = pil.encode(0xA0, b"\x01")
+    unknown = pil.encode(0x55, b"")
+    stream = b"\x00\xa5\xa5" + bytes(bad_crc) + wrong_len + unknown + good + pil.encode(0x81)
+    frames = []
+    for i in range(len(stream)):  # byte by byte, as a socket may deliver it
+        frames += d.feed(stream[i: i + 1])
+    assert frames == [(0xA0, b"\x01\x02"), (0x81, b"")]
+    assert d.bad == 3
+
+
+def test_fixed_point_rounds_like_llround() -> None:
+    assert pil._llround(2.5) == 3 and pil._llround(-2.5) == -3
+    assert pil._llround(0.49999999999999994) == 0
+    assert pil.q14(0.5 / 16384) == 1 and pil.q14(-0.5 / 16384) == -1
+    assert pil.q14(2.5) == 32767 and pil.q14(-9.0) == -32768 and pil.q14(float("nan")) == 0
+    assert pil.cm32(1e12) == 2 ** 31 - 1
+    assert pil.to_fixed(0.013, 500.0, -500, 500) == 7  # 6.5 -> 7 (away from zero)
+
+
+def test_config_frames_have_the_documented_lengths() -> None:
+    cfg = {k: 0.0 for k in (
+        "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator", "kff_rudder",
+        "kd_aileron", "kd_elevator", "kd_rudder", "v_ref_m_s", "v_min_m_s", "max_tilt",
+        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s", "alt_max_pitch",
+        "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
+        "alt_integral_upright", "alt_integral_inverted", "spd_throttle_trim", "spd_throttle_min",
+        "spd_throttle_max", "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m",
+        "spd_kff_throttle_per_pitch", "spd_max_integral_throttle", "trim_aileron",
+        "trim_elevator", "trim_rudder")}
+    cfg.update(schedule=1, control_rate_hz=40)
+    frames = pil.config_frames(cfg)
+    assert [f[2] for f in frames] == [49, 38, 22, 58]
+    assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13]
+
+
+# --- the firmware under QEMU -----------------------------------------------------
+
+@pytest.fixture(scope="module")
+def elf() -> str:
+    required = os.environ.get("HT_PIL_REQUIRE") == "1"
+    path = os.environ.get("HT_PIL_ELF")
+    why = None
+    if not path or not Path(path).is_file():
+        why = f"HIL image not found (HT_PIL_ELF={path!r})"
+    elif not (os.environ.get("HT_QEMU") or shutil.which("qemu-system-arm")):
+        why = "qemu-system-arm not found"
+    if why:
+        if required:
+            pytest.fail(why)
+        pytest.skip(why + ": the PIL tests run under ctest -L pil")
+    assert path is not None
+    return path
+
+
+def _strip(d: object) -> object:
+    """metrics.json without the two wall-clock numbers."""
+    if isinstance(d, dict):
+        return {k: _strip(v) for k, v in d.items() if k not in ("sim_speed_x_realtime", "wall_s")}
+    if isinstance(d, list):
+        return [_strip(x) for x in d]
+    return d
+
+
+def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path: Path) -> None:
+    sc = load_scenario(SHORT)
+    ref = sim.run(sc, board_lib)
+    r = pil.run(sc, board_lib, elf)
+    got = r.result
+    n = len(ref.telemetry["t_s"])
+    assert len(got.telemetry["t_s"]) == n == int(sc.duration_s * sc.control_rate_hz)
+    surf_ref = np.column_stack([ref.telemetry[c] for c in SURFACES])
+    surf_pil = np.column_stack([got.telemetry[c] for c in SURFACES])
+    mismatching = int(np.count_nonzero(np.any(surf_ref != surf_pil, axis=1)))
+    differing_columns = [c for c in sim.COLUMNS
+                         if not np.array_equal(ref.telemetry[c], got.telemetry[c],
+                                               equal_nan=True)]
+    m_ref, m_pil = met.run_metrics(ref), met.run_metrics(got)
+    s = r.summary()
+    report = {"steps": n, "mismatching_surface_steps": mismatching,
+              "differing_columns": differing_columns,
+              "mismatch_steps_vs_host_step": s["mismatch_steps_vs_host_step"],
+              "frames_per_s_link": s["frames_per_s_link"],
+              "frames_per_s_loop": s["frames_per_s_loop"],
+              "firmware": s["firmware_counters_end"], "sil_run": m_ref["run"],
+              "pil_run": m_pil["run"]}
+    print(json.dumps(report, indent=1))
+    (tmp_path / "pil_check.json").write_text(json.dumps(report, indent=1))
+    assert mismatching == 0
+    assert differing_columns == []
+    assert s["mismatch_steps_vs_host_step"] == 0
+    assert s["readback_mismatch_steps"] == 0
+    assert _strip(m_ref) == _strip(m_pil)
+    fw = s["firmware_counters_end"]
+    assert fw["steps"] == n
+    assert fw["bad_crc"] == fw["bad_length"] == fw["unknown_id"] == fw["naks"] == 0
+    assert fw["link_errors"] == 0
+
+
+def test_firmware_drops_bad_frames_on_the_wire(elf: str) -> None:
+    with pil.Target(elf) as t:
+        before = t.status()
+        good = pil.sensors_payload(0, _Sensors(), _Command())
+        bad_crc = bytearray(pil.encode(pil.ID_SENSORS, good))
+        bad_crc[10] ^= 0x40
+        t.send(b"\x00\x13\xa5" + bytes(bad_crc) + pil.encode(0x33, b"xyz")
+               + pil.encode(pil.ID_SENSORS, good[:-1]))
+        # nothing may come back for those: only the READY asked for next
+        after = t.status()
+        assert after["bad_crc"] == before["bad_crc"] + 1
+        assert after["unknown_id"] == before["unknown_id"] + 2  # unknown id, wrong length
+        assert after["steps"] == before["steps"] == 0
+        assert not t.pending
+        # SENSORS before START: refused (NAK), not stepped
+        t.send(pil.encode(pil.ID_SENSORS, good))
+        with pytest.raises(pil.PilError, match="refused"):
+            t.expect(pil.ID_OUTPUT, timeout_s=2.0)
+        assert t.status()["naks"] == before["naks"] + 1
+
+
+class _Sensors:
+    dcm_x, dcm_y, dcm_z = 0.0, 0.0, 1.0
+    gyro_x = gyro_y = gyro_z = 0.0
+    airspeed_m_s, altitude_m, climb_m_s = 110.0, 1500.0, 0.0
+
+
+class _Command:
+    turn_rate_rad_s = pitch_ratio = 0.0
+    altitude_m, airspeed_m_s, throttle = 1500.0, 110.0, 0.5
+    altitude_hold = speed_hold = inverted = pitch_mode = 0
+
+
+def test_qemu_is_gone_after_close(elf: str) -> None:
+    t = pil.Target(elf)
+    proc = t.proc
+    assert proc is not None and proc.poll() is None
+    t.close()
+    assert proc.poll() is not None
+    t.close()  # idempotent
