@@ -75,8 +75,8 @@ int32_t q_rshift_round(int32_t x, unsigned shift);
 
 /*
  * a * b in Q14: round(a*b / 2^14), saturated. Exact to 1/2 LSB.
- * The only input that saturates is (-2.0) * (-2.0) = +4.0 -> INT16_MAX;
- * other products of magnitude >= 2.0 also clamp.
+ * Products of magnitude >= 2.0 clamp (for example (-2.0) * (-2.0) = +4.0 and
+ * (-2.0) * (-1.99994) both give INT16_MAX).
  */
 q14_t q14_mul(q14_t a, q14_t b);
 
@@ -143,8 +143,9 @@ q14_t q14_sqrt(q14_t x);
 /* --- vectors ------------------------------------------------------------ */
 
 /*
- * Dot product of two Q14 3-vectors: round(sum a_i*b_i / 2^14), accumulated
- * exactly in int32 and saturated once at the end.
+ * Dot product of two Q14 3-vectors: round(sum a_i*b_i / 2^14), saturated:
+ * the same result as the exact sum saturated at the end (the int32
+ * accumulator saturates on the way only when the final value would too).
  */
 q14_t q14_dot3(const q14_t a[3], const q14_t b[3]);
 
@@ -176,15 +177,17 @@ int q_unit_q28(const int32_t *v, unsigned n, int32_t *out);
 
 /*
  * Euclidean length of (a, b) with a and b in Q14, as Q16 (two guard bits):
- * the correctly rounded root on the Q16 grid when a^2 + b^2 < 1/4, on the Q15
- * grid below 1 and on the Q14 grid above (so within 2 LSB of Q16); at most
+ * the correctly rounded root on the Q16 grid when a^2 + b^2 < 1, on the Q15
+ * grid below 4 and on the Q14 grid above (so within 2 LSB of Q16); at most
  * 2*sqrt(2) for any inputs.
  */
 q16_t q14_norm2_q16(q14_t a, q14_t b);
 
 /*
- * Normalize a Q14 2-vector or 3-vector in place to unit length (Q14,
- * rounded). A zero vector is left zero and the function returns 0.
+ * Normalize a Q14 2-vector or 3-vector in place to unit length, in Q14:
+ * the Q28 unit vector rounded once, so within 0.5 LSB + 6 LSB of Q28 of the
+ * exact value (0.50037 LSB of Q14). A zero vector is left zero and the
+ * function returns 0.
  */
 int q14_normalize2(q14_t v[2]);
 int q14_normalize3(q14_t v[3]);
