@@ -9,9 +9,20 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 
 from helical_sil.sim import RunResult  # noqa: E402
+
+
+def _break_wraps(values: np.ndarray) -> np.ndarray:
+    """An angle in degrees with NaN where it wraps (a jump over 180 deg), so
+    that a bank near +-180 or a heading through north is not drawn as a
+    vertical line across the plot."""
+    v = np.asarray(values, dtype=float).copy()
+    jumps = np.abs(np.diff(v)) > 180.0
+    v[1:][jumps] = np.nan
+    return v
 
 
 def _marks(ax: plt.Axes, res: RunResult) -> None:
@@ -36,7 +47,7 @@ def write_plots(res: RunResult, out: Path) -> list[Path]:
     fig, axs = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
     for ax, k, lab in zip(axs, ("phi_deg", "theta_deg", "psi_deg"),
                           ("bank φ (deg)", "pitch θ (deg)", "heading ψ (deg)")):
-        ax.plot(t, tel[k], lw=1)
+        ax.plot(t, _break_wraps(tel[k]) if k != "theta_deg" else tel[k], lw=1)
         ax.set_ylabel(lab)
         ax.grid(alpha=0.3)
         _marks(ax, res)
