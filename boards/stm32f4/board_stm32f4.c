@@ -11,6 +11,7 @@
  */
 #include "helical/board.h"
 
+#include "board_stm32f4.h"
 #include "stm32f4_gpio.h"
 #include "stm32f4_pwm.h"
 #include "stm32f4_regs.h"
@@ -106,4 +107,9 @@ void board_failsafe(board_failsafe_t reason)
     if (reason == BOARD_FS_CONFIG) {
         stm32_pwm_silence(&servo_pwm);
     }
+}
+
+const stm32_pwm_t *board_stm32f4_pwm(void)
+{
+    return &servo_pwm;
 }

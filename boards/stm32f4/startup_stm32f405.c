@@ -22,6 +22,7 @@ void SVC_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void DebugMon_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void PendSV_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void USART1_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 
 /* 16 system exceptions (the first is the initial stack pointer) and the 82
  * STM32F405 interrupt lines (RM0090 table 61: positions 0..81). A struct
@@ -55,8 +56,9 @@ __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table 
         PendSV_Handler,
         SysTick_Handler,
     },
-    /* No peripheral interrupt is enabled by this image; should one fire,
-     * it stops in Default_Handler where a debugger can see it. */
+    /* The flight image enables no peripheral interrupt; the HIL image enables
+     * USART1's (position 37). Any other stops in Default_Handler where a
+     * debugger can see it. */
     {
 #define D4 Default_Handler, Default_Handler, Default_Handler, Default_Handler
         D4,
@@ -68,7 +70,10 @@ __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table 
         D4,
         D4,
         D4,
-        D4,
+        Default_Handler,   /* 36 */
+        USART1_IRQHandler, /* 37 */
+        Default_Handler,
+        Default_Handler,
         D4,
         D4,
         D4,

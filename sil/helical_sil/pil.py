@@ -26,8 +26,11 @@ import json
 import math
 import os
 import shutil
+import signal
 import socket
 import subprocess
+import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -297,6 +300,12 @@ def find_elf(explicit: str | os.PathLike[str] | None = None) -> Path:
     return p
 
 
+def _die_with_parent() -> None:
+    """In the QEMU child (Linux): SIGTERM when the harness dies, even by SIGKILL."""
+    with contextlib.suppress(Exception):
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG
+
+
 class Target:
     """One QEMU netduinoplus2 running the HIL image, its USART1 on a TCP socket."""
 
@@ -306,6 +315,7 @@ class Target:
         self.qemu = find_qemu()
         self.timeout_s = timeout_s
         self.proc: subprocess.Popen[bytes] | None = None
+        self._err: Any = None  # QEMU's stderr, a temporary file (a pipe could fill up)
         self.sock: socket.socket | None = None
         self.dec = Decoder(FW_LENGTHS)
         self.pending: list[tuple[int, bytes]] = []
@@ -320,11 +330,13 @@ class Target:
             with socket.socket() as probe:
                 probe.bind(("127.0.0.1", 0))
                 port = probe.getsockname()[1]
+            self._err = tempfile.TemporaryFile()
             self.proc = subprocess.Popen(
                 [self.qemu, "-M", "netduinoplus2", "-nographic", "-monitor", "none",
                  "-serial", f"tcp:127.0.0.1:{port},server=on,wait=off,nodelay=on",
                  "-kernel", str(self.elf)],
-                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self._err,
+                preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None)
             while time.monotonic() < deadline and self.proc.poll() is None:
                 try:
                     self.sock = socket.create_connection(("127.0.0.1", port), timeout=0.5)
@@ -355,7 +367,16 @@ class Target:
         if not self.ready["magic_ok"] or self.ready["version"] != PROTOCOL_VERSION:
             self.close()
             raise PilError(f"unexpected READY from the firmware: {self.ready}")
-        self.pending.clear()  # extra READYs answering earlier HELLOs
+        # An earlier HELLO may still be answered: drain the READYs until the
+        # link has been quiet for 0.1 s (at most 1 s), so that no stale READY
+        # is taken for the answer to a later HELLO (status()).
+        drain_end = time.monotonic() + 1.0
+        while time.monotonic() < drain_end:
+            try:
+                self.expect(ID_READY, timeout_s=0.1)
+            except TimeoutError:
+                break
+        self.pending.clear()
 
     def send(self, data: bytes) -> None:
         assert self.sock is not None
@@ -413,6 +434,8 @@ class Target:
         return out
 
     def status(self) -> dict[str, int]:
+        """The firmware's counters (HELLO -> READY; one frame in flight)."""
+        self.pending = [f for f in self.pending if f[0] != ID_READY]
         self.send(encode(ID_HELLO))
         return parse_ready(self.expect(ID_READY))
 
@@ -426,10 +449,13 @@ class Target:
                 except subprocess.TimeoutExpired:
                     self.proc.kill()
                     self.proc.wait(timeout=3)
-            if self.proc.stderr is not None:
-                err = self.proc.stderr.read().decode(errors="replace").strip()
-                self.proc.stderr.close()
             self.proc = None
+        if self._err is not None:
+            with contextlib.suppress(OSError):
+                self._err.seek(0)
+                err = self._err.read().decode(errors="replace").strip()
+                self._err.close()
+            self._err = None
         return err
 
     def close(self) -> None:
