@@ -57,12 +57,9 @@ static int tick_start(uint32_t fcy_hz, uint16_t hz)
 
 board_status_t board_init(const board_config_t *cfg)
 {
-    if (cfg == NULL) {
-        return BOARD_ERR_NULL;
-    }
-    if (cfg->control_hz < BOARD_CONTROL_HZ_MIN || cfg->control_hz > BOARD_CONTROL_HZ_MAX ||
-        cfg->servo_frame_hz < BOARD_SERVO_HZ_MIN || cfg->servo_frame_hz > BOARD_SERVO_HZ_MAX) {
-        return BOARD_ERR_RANGE;
+    board_status_t st = board_config_check(cfg);
+    if (st != BOARD_OK) {
+        return st;
     }
     if (dspic_pwm_init(&servo_pwm, udb_tmr23, udb_oc1, 2u, HT_DSPIC_FCY_HZ, cfg->servo_frame_hz,
                        cfg->servo_start_us) != DSPIC_PWM_OK) {

@@ -52,12 +52,9 @@ void SysTick_Handler(void)
 
 board_status_t board_init(const board_config_t *cfg)
 {
-    if (cfg == NULL) {
-        return BOARD_ERR_NULL;
-    }
-    if (cfg->control_hz < BOARD_CONTROL_HZ_MIN || cfg->control_hz > BOARD_CONTROL_HZ_MAX ||
-        cfg->servo_frame_hz < BOARD_SERVO_HZ_MIN || cfg->servo_frame_hz > BOARD_SERVO_HZ_MAX) {
-        return BOARD_ERR_RANGE;
+    board_status_t st = board_config_check(cfg);
+    if (st != BOARD_OK) {
+        return st;
     }
     stm32_rcc_enable_servo_clocks(RCC);
     /* Timers first, pins second: the pins only see PWM once it is set up. */

@@ -18,6 +18,7 @@
 #ifndef HELICAL_BOARD_H
 #define HELICAL_BOARD_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -58,6 +59,21 @@ typedef struct {
     {                                                                                              \
         BOARD_CONTROL_HZ_DEFAULT, BOARD_SERVO_HZ_DEFAULT, 0u                                       \
     }
+
+/* The check every board_init starts with, kept here so that every board
+ * refuses exactly the same configurations: BOARD_ERR_NULL, BOARD_ERR_RANGE
+ * (a rate outside its documented range) or BOARD_OK. */
+static inline board_status_t board_config_check(const board_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return BOARD_ERR_NULL;
+    }
+    if (cfg->control_hz < BOARD_CONTROL_HZ_MIN || cfg->control_hz > BOARD_CONTROL_HZ_MAX ||
+        cfg->servo_frame_hz < BOARD_SERVO_HZ_MIN || cfg->servo_frame_hz > BOARD_SERVO_HZ_MAX) {
+        return BOARD_ERR_RANGE;
+    }
+    return BOARD_OK;
+}
 
 /*
  * The sensor seam. A board with an IMU and a DCM fills this from them; the
