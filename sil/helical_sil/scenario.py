@@ -55,6 +55,10 @@ SEGMENT_METRICS = (
     # flight modes (issue 5)
     "cross_track_rms_m", "cross_track_max_m", "waypoints_reached", "waypoint_miss_max_m",
     "bank_rate_rms_deg_s", "altitude_rms_m",
+    # --- fault campaign (issue 7) ---
+    "bank_abs_max_deg", "bank_error_max_deg", "tilt_error_max_deg", "airspeed_min_m_s",
+    "airspeed_max_m_s", "min_altitude_m",
+    # --- end fault campaign ---
 )
 RUN_METRICS = (
     "max_altitude_loss_m", "surface_saturation_frac", "sideslip_rms_deg",
@@ -63,6 +67,10 @@ RUN_METRICS = (
     "altitude_change_m", "cross_track_rms_m", "cross_track_max_m", "waypoints_reached",
     "waypoints_within_radius", "waypoint_miss_max_m", "bank_rate_rms_deg_s", "altitude_rms_m",
     "failsafe_entry_s", "home_distance_end_m", "loiter_radius_error_m",
+    # --- fault campaign (issue 7) ---
+    "recovery_time_s", "tilt_error_end_deg", "min_altitude_m", "bank_abs_max_deg",
+    "airspeed_min_m_s", "airspeed_max_m_s",
+    # --- end fault campaign ---
 )
 
 # --- flight modes (issue 5): [modes], [nav], [fbw], [aoa], [[waypoint]], [[rc]] ---
@@ -160,6 +168,29 @@ class Aircraft:
     mode_tables: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
+# --- fault campaign (issue 7) ---
+UPSET_KEYS = ("roll_deg", "pitch_deg", "heading_deg", "calibrated_airspeed_m_s", "p_deg_s",
+              "q_deg_s", "r_deg_s")
+SENSOR_KEYS = ("gyro_noise_rad_s", "gyro_bias_rad_s", "airspeed_noise_m_s", "latency_steps",
+               "fault_start_s", "airspeed_stuck_m_s", "airspeed_spike_m_s",
+               "airspeed_spike_rate_hz", "gyro_saturation_rad_s")
+
+
+@dataclass
+class Upset:
+    """[upset]: after the trim at [initial] (the servo trims, throttle and pitch
+    trim the harness carries over), the aircraft is re-initialised at this
+    attitude, calibrated airspeed and body rates (JSBSim ic/*), not trimmed."""
+    roll_deg: float
+    pitch_deg: float
+    heading_deg: float
+    calibrated_airspeed_m_s: float
+    p_deg_s: float = 0.0
+    q_deg_s: float = 0.0
+    r_deg_s: float = 0.0
+# --- end fault campaign ---
+
+
 @dataclass
 class Scenario:
     path: Path
@@ -183,6 +214,14 @@ class Scenario:
     gyro_bias_rad_s: float = 0.0
     airspeed_noise_m_s: float = 0.0
     latency_steps: int = 0
+    # --- fault campaign (issue 7): sensor faults from fault_start_s on, and the upset IC ---
+    fault_start_s: float = 0.0
+    airspeed_stuck_m_s: float | None = None   # the airspeed reads this constant
+    airspeed_spike_m_s: float = 0.0           # one-step spikes of +-this size ...
+    airspeed_spike_rate_hz: float = 0.0       # ... this many per second on average
+    gyro_saturation_rad_s: float | None = None  # each gyro clips at +-this
+    upset: Upset | None = None                # released untrimmed at this state
+    # --- end fault campaign ---
     steady_after_s: float = 8.0
     entry_window_s: float = 6.0
     commands: list[Command] = field(default_factory=list)
@@ -244,6 +283,25 @@ def _check_keys(src: Path, prefix: str, table: dict[str, Any], allowed: tuple[st
             raise ScenarioError(
                 f"{_where(src, name)}: unknown key (allowed here: {', '.join(allowed)})")
 
+
+
+def _timeline_entry(src: Path, pre: str, raw: Any, keys: Any, duration: float, last_t: float,
+                    labels: set[str], default_label: str) -> tuple[dict[str, Any], float, str]:
+    """What every timeline entry ([[command]], [[rc]]) shares: a table of known
+    keys, a time t_s within the run that does not go back, and a label that is
+    unique (the new label is added to labels)."""
+    c = _table(src, pre, raw)
+    _check_keys(src, pre, c, keys)
+    if "t_s" not in c:
+        raise ScenarioError(f"{_where(src, pre + '.t_s')}: missing (required)")
+    t = _num(src, pre + ".t_s", c["t_s"], 0.0, duration)
+    if t < last_t:
+        raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
+    label = _str(src, pre + ".label", c.get("label", default_label))
+    if label in labels or label == "run":
+        raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
+    labels.add(label)
+    return c, t, label
 
 def _load_toml(path: Path) -> dict[str, Any]:
     try:
@@ -400,18 +458,8 @@ def _parse_modes(src: Path, doc: dict[str, Any], ac: Aircraft, duration: float,
     last_t = -1.0
     for i, c in enumerate(rcs):
         pre = f"rc[{i}]"
-        c = _table(src, pre, c)
-        _check_keys(src, pre, c, RC_KEYS)
-        if "t_s" not in c:
-            raise ScenarioError(f"{_where(src, pre + '.t_s')}: missing (required)")
-        t = _num(src, pre + ".t_s", c["t_s"], 0.0, duration)
-        if t < last_t:
-            raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
+        c, t, label = _timeline_entry(src, pre, c, RC_KEYS, duration, last_t, labels, f"rc{i}")
         last_t = t
-        label = _str(src, pre + ".label", c.get("label", f"rc{i}"))
-        if label in labels or label == "run":
-            raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
-        labels.add(label)
         e = RcEntry(t_s=t, label=label)
         if "mode" in c and "mode_us" in c:
             raise ScenarioError(f"{_where(src, pre + '.mode_us')}: give either mode or mode_us, not both")
@@ -443,10 +491,53 @@ def _parse_modes(src: Path, doc: dict[str, Any], ac: Aircraft, duration: float,
 
 TOP_KEYS = ("aircraft", "description", "duration_s", "seed", "control_rate_hz", "sim_rate_hz",
             "initial", "gains", "wind", "sensors", "command", "pass", "metrics",
-            "modes", "nav", "fbw", "aoa", "waypoint", "rc")
+            "modes", "nav", "fbw", "aoa", "waypoint", "rc",
+            "upset")  # fault campaign (issue 7)
 COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb_m_s",
                 "airspeed_m_s",
                 "throttle", "inverted", "pitch_mode")
+
+
+# --- fault campaign (issue 7) ---
+def _parse_faults(src: Path, doc: dict[str, Any], sens: dict[str, Any], sc: Scenario) -> None:
+    """The sensor-fault keys of [sensors] and the [upset] table."""
+    sc.fault_start_s = _num(src, "sensors.fault_start_s", sens.get("fault_start_s", 0.0), 0.0,
+                            sc.duration_s)
+    if "airspeed_stuck_m_s" in sens:
+        sc.airspeed_stuck_m_s = _num(src, "sensors.airspeed_stuck_m_s",
+                                     sens["airspeed_stuck_m_s"], 0.0, 300.0)
+    sc.airspeed_spike_m_s = _num(src, "sensors.airspeed_spike_m_s",
+                                 sens.get("airspeed_spike_m_s", 0.0), 0.0, 300.0)
+    sc.airspeed_spike_rate_hz = _num(src, "sensors.airspeed_spike_rate_hz",
+                                     sens.get("airspeed_spike_rate_hz", 0.0), 0.0,
+                                     float(sc.control_rate_hz))
+    if (sc.airspeed_spike_m_s > 0.0) != (sc.airspeed_spike_rate_hz > 0.0):
+        raise ScenarioError(f"{_where(src, 'sensors.airspeed_spike_rate_hz')}: spikes need both "
+                            "airspeed_spike_m_s and airspeed_spike_rate_hz > 0")
+    if "gyro_saturation_rad_s" in sens:
+        sc.gyro_saturation_rad_s = _num(src, "sensors.gyro_saturation_rad_s",
+                                        sens["gyro_saturation_rad_s"], 0.01, 16.0)
+    if "upset" not in doc:
+        return
+    up = _table(src, "upset", doc["upset"])
+    _check_keys(src, "upset", up, UPSET_KEYS)
+    for k in ("roll_deg", "pitch_deg"):
+        if k not in up:
+            raise ScenarioError(f"{_where(src, 'upset.' + k)}: missing (required)")
+    sc.upset = Upset(
+        roll_deg=_num(src, "upset.roll_deg", up["roll_deg"], -180.0, 180.0),
+        pitch_deg=_num(src, "upset.pitch_deg", up["pitch_deg"], -90.0, 90.0),
+        heading_deg=_num(src, "upset.heading_deg", up.get("heading_deg", sc.heading_deg),
+                         -360.0, 360.0),
+        calibrated_airspeed_m_s=_num(src, "upset.calibrated_airspeed_m_s",
+                                     up.get("calibrated_airspeed_m_s", sc.airspeed_m_s),
+                                     5.0, 300.0),
+        **{k: _num(src, f"upset.{k}", up.get(k, 0.0), -360.0, 360.0)
+           for k in ("p_deg_s", "q_deg_s", "r_deg_s")})
+    if not sc.trim:
+        raise ScenarioError(f"{_where(src, 'initial.trim')}: an [upset] starts from the trim at "
+                            "[initial] (its servo trims), so trim must stay true")
+# --- end fault campaign ---
 
 
 def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> Scenario:
@@ -493,8 +584,7 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     sc.turbulence = _str(src, "wind.turbulence", wind.get("turbulence", "none"), TURBULENCE)
 
     sens = _table(src, "sensors", doc.get("sensors", {}))
-    _check_keys(src, "sensors", sens, ("gyro_noise_rad_s", "gyro_bias_rad_s",
-                                       "airspeed_noise_m_s", "latency_steps"))
+    _check_keys(src, "sensors", sens, SENSOR_KEYS)
     sc.gyro_noise_rad_s = _num(src, "sensors.gyro_noise_rad_s", sens.get("gyro_noise_rad_s", 0.0),
                                0.0, 1.0)
     sc.gyro_bias_rad_s = _num(src, "sensors.gyro_bias_rad_s", sens.get("gyro_bias_rad_s", 0.0),
@@ -502,6 +592,7 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     sc.airspeed_noise_m_s = _num(src, "sensors.airspeed_noise_m_s",
                                  sens.get("airspeed_noise_m_s", 0.0), 0.0, 20.0)
     sc.latency_steps = _int(src, "sensors.latency_steps", sens.get("latency_steps", 0), 0, 100)
+    _parse_faults(src, doc, sens, sc)  # fault campaign (issue 7)
 
     met = _table(src, "metrics", doc.get("metrics", {}))
     _check_keys(src, "metrics", met, ("steady_after_s", "entry_window_s"))
@@ -533,18 +624,8 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     last_t = -1.0
     for i, c in enumerate(cmds):
         pre = f"command[{i}]"
-        c = _table(src, pre, c)
-        _check_keys(src, pre, c, COMMAND_KEYS)
-        if "t_s" not in c:
-            raise ScenarioError(f"{_where(src, pre + '.t_s')}: missing (required)")
-        t = _num(src, pre + ".t_s", c["t_s"], 0.0, duration)
-        if t < last_t:
-            raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
+        c, t, label = _timeline_entry(src, pre, c, COMMAND_KEYS, duration, last_t, labels, f"seg{i}")
         last_t = t
-        label = _str(src, pre + ".label", c.get("label", f"seg{i}"))
-        if label in labels or label == "run":
-            raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
-        labels.add(label)
         if "pitch" in c and "altitude_m" in c:
             raise ScenarioError(
                 f"{_where(src, pre + '.pitch')}: give either pitch or altitude_m, not both")
