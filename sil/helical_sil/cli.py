@@ -30,12 +30,15 @@ SUMMARY_COLS = (
 
 
 def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
-            csv: bool = True) -> dict[str, Any]:
-    """Fly one scenario and write its outputs; returns metrics.json's content."""
+            csv: bool = True, seed: int | None = None) -> dict[str, Any]:
+    """Fly one scenario and write its outputs; returns metrics.json's content.
+    seed (fault campaign, issue 7): fly it with this seed instead of its own."""
     from helical_sil import metrics as met
     from helical_sil import sim
 
     sc = load_scenario(path)
+    if seed is not None:
+        sc.seed, sc.name = seed, f"{sc.name}_seed{seed}"
     res = sim.run(sc, board_lib)
     out.mkdir(parents=True, exist_ok=True)
     m = met.run_metrics(res)
@@ -144,18 +147,24 @@ def cmd_batch(args: argparse.Namespace) -> int:
     rows, results = [], {}
     t0 = time.perf_counter()
     failed_load = False
-    for i, f in enumerate(files):
-        _progress(i, len(files), f.stem, t0)
+    # --- fault campaign (issue 7): --seeds flies every scenario once per seed ---
+    seeds: list[int | None] = list(args.seeds) if getattr(args, "seeds", None) else [None]
+    runs = [(f, sd, f.stem if sd is None else f"{f.stem}_seed{sd}") for f in files
+            for sd in seeds]
+    files = [f for f, _sd, _n in runs]
+    for i, (f, sd, name) in enumerate(runs):
+        _progress(i, len(files), name, t0)
         try:
-            m = run_one(f, out / f.stem, args.board_lib, plots=not args.no_plots)
+            m = run_one(f, out / name, args.board_lib, plots=not args.no_plots, seed=sd)
         except (ScenarioError, SimError) as e:
             sys.stderr.write(f"\nerror: {e}\n")
             failed_load = True
-            rows.append({"scenario": f.stem, "result": "ERROR"})
+            rows.append({"scenario": name, "result": "ERROR"})
             continue
         rows.append(_summary_row(m))
-        results[f.stem] = {"passed": m["passed"], "run": m["run"],
-                           "pass_criteria": m["pass_criteria"]}
+        results[name] = {"passed": m["passed"], "run": m["run"],
+                         "pass_criteria": m["pass_criteria"]}
+    # --- end fault campaign ---
     _progress(len(files), len(files), "done", t0)
     table = format_table(rows)
     print(table)
@@ -206,6 +215,66 @@ def cmd_compare(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- fault campaign (issue 7): the upset-recovery campaign ---
+def cmd_upsets(args: argparse.Namespace) -> int:
+    from helical_sil import upsets
+    if args.count < 1:
+        print("error: --count must be at least 1", file=sys.stderr)
+        return 2
+    try:
+        known = upsets.parse_known(args.known_failures, args.aircraft, args.count)
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    n_failed, table = upsets.run_campaign(
+        args.aircraft, args.count, args.seed, Path(args.out), args.board_lib,
+        altitude_m=args.altitude_m, duration_s=args.duration_s, floor_m=args.floor_m,
+        jobs=args.jobs, plots=args.plots, known_failures=known,
+        pitch_mode=args.pitch_mode)
+    print(table)
+    print(f"wrote {Path(args.out).resolve()} (summary.md, summary.json, one folder and "
+          "scenario file per upset)")
+    return 0 if n_failed == 0 else 1
+
+
+def _add_upsets_parser(sub: Any) -> None:
+    from helical_sil import upsets
+    u = sub.add_parser(
+        "upsets", help="upset-recovery campaign: random attitudes, recover to level flight",
+        description="Fly COUNT seeded random upsets per aircraft (any bank, pitch +-80 deg, "
+                    "inverted, airspeed from near the stall to a little above cruise, body "
+                    "rates up to "
+                    "+-20 deg/s; released untrimmed after a cruise trim) with the controller "
+                    "commanded to level upright flight on the altitude hold (at the start "
+                    "altitude) and airspeed hold. An upset is recovered when the tilt stays "
+                    "within 10 deg of the law's target tilt to the end of the run (at least "
+                    "5 s) and the lowest point stays above --floor-m. Writes one scenario "
+                    "file and output folder per upset, summary.md and summary.json; exit 1 "
+                    "if any upset fails.")
+    u.add_argument("--aircraft", nargs="+", default=["T37", "c172p"],
+                   help="aircraft names (default: T37 c172p)")
+    u.add_argument("--count", type=int, default=50, help="upsets per aircraft (default 50)")
+    u.add_argument("--seed", type=int, default=1, help="campaign seed (default 1)")
+    u.add_argument("--out", required=True, help="output directory")
+    u.add_argument("--altitude-m", type=float, default=upsets.DEFAULT_ALTITUDE_M,
+                   help=f"start altitude, m above sea level (JSBSim's ground is at sea "
+                        f"level; default {upsets.DEFAULT_ALTITUDE_M:g})")
+    u.add_argument("--duration-s", type=float, default=upsets.DEFAULT_DURATION_S,
+                   help=f"length of each run (default {upsets.DEFAULT_DURATION_S:g})")
+    u.add_argument("--floor-m", type=float, default=upsets.DEFAULT_FLOOR_M,
+                   help=f"lowest altitude allowed, m above the ground (default "
+                        f"{upsets.DEFAULT_FLOOR_M:g})")
+    u.add_argument("--jobs", type=int, default=1, help="parallel runs (default 1)")
+    u.add_argument("--plots", action="store_true", help="also write the PNG plots of each run")
+    u.add_argument("--pitch-mode", choices=("earth_frame", "tilt_cross"), default="earth_frame",
+                   help="the law's pitch method (default earth_frame, the tuned one)")
+    u.add_argument("--known-failures", nargs="*", default=[], metavar="AIRCRAFT:INDEX",
+                   help="upsets failing on a known library defect: reported as failures, "
+                        "not counted in the exit status; exit 1 if one of them passes")
+    u.set_defaults(func=cmd_upsets)
+# --- end fault campaign ---
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="python -m helical_sil",
@@ -239,6 +308,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--out", required=True, help="output directory")
     b.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     b.add_argument("--only", nargs="*", help="scenario names (file stems) to run")
+    b.add_argument("--seeds", nargs="+", type=int, default=None,  # fault campaign (issue 7)
+                   help="fly every scenario once per seed (instead of its own seed); "
+                        "outputs NAME_seedN")
     b.set_defaults(func=cmd_batch)
     c = sub.add_parser("compare", help="metrics of runs side by side",
                        description="Print, per segment label of the first run, the metrics of "
@@ -247,6 +319,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("runs", nargs="+", help="run output directories (with metrics.json)")
     c.add_argument("--metrics", nargs="*", help="metric names (default: a standard set)")
     c.set_defaults(func=cmd_compare)
+    _add_upsets_parser(sub)  # fault campaign (issue 7)
     return ap
 
 

@@ -136,6 +136,86 @@ def failsafe_metrics(res: RunResult) -> dict[str, Any]:
     return out
 
 
+# --- fault campaign (issue 7) ---------------------------------------------
+
+RECOVERY_TILT_DEG = 10.0   # recovered: tilt within this of the target ...
+RECOVERY_HOLD_S = 5.0      # ... from then to the end of the run, at least this long
+
+
+def target_tilt(res: RunResult) -> np.ndarray:
+    """The law's target tilt (helical_turn.c target_tilt: Eq. 5, 6, inverted
+    flip) at each step, from the logged command: turn rate used by the law,
+    the sensed airspeed (at least v_min), the pitch ratio given to the law
+    (the altitude hold's output when it is on) and the inverted flag. (n, 3)."""
+    tel = res.telemetry
+    g = res.scenario.gains
+    s = np.maximum(tel["sens_airspeed_m_s"], g["v_min"])
+    ratio = np.clip(np.radians(tel["turn_rate_used_deg_s"]) * s / G, -g["max_tilt"],
+                    g["max_tilt"])
+    p = tel["pitch_cmd"]
+    t = 1.0 / np.sqrt(1.0 + p ** 2)
+    r = 1.0 / np.sqrt(1.0 + ratio ** 2)
+    sign = np.where(tel["inverted"] > 0.5, -1.0, 1.0)
+    return np.column_stack([sign * -ratio * r * t, -p * t, sign * r * t])
+
+
+def tilt_error_deg(res: RunResult) -> np.ndarray:
+    """Angle between the actual tilt (the DCM bottom row) and the target tilt."""
+    tel = res.telemetry
+    act = np.column_stack([tel["dcm_x"], tel["dcm_y"], tel["dcm_z"]])
+    act /= np.linalg.norm(act, axis=1, keepdims=True)
+    dot = np.clip(np.sum(act * target_tilt(res), axis=1), -1.0, 1.0)
+    return np.degrees(np.arccos(dot))
+
+
+def recovery_metrics(res: RunResult) -> dict[str, Any]:
+    """recovery_time_s: from t = 0 until the tilt error is within
+    RECOVERY_TILT_DEG for the rest of the run (None if it is not within it at
+    the end, or for less than RECOVERY_HOLD_S); tilt_error_end_deg: the largest
+    tilt error over the last RECOVERY_HOLD_S; min_altitude_m; bank and
+    airspeed extremes."""
+    tel = res.telemetry
+    t = tel["t_s"]
+    err = tilt_error_deg(res)
+    out: dict[str, Any] = {}
+    bad = np.nonzero(err > RECOVERY_TILT_DEG)[0]
+    dt = 1.0 / res.scenario.control_rate_hz
+    t_rec = 0.0 if not bad.size else float(t[bad[-1]] + dt)
+    end = float(t[-1] + dt)
+    out["recovery_time_s"] = t_rec if end - t_rec >= RECOVERY_HOLD_S - 1e-9 else None
+    out["tilt_error_end_deg"] = _f(np.max(err[t >= end - RECOVERY_HOLD_S - 1e-9]))
+    out["min_altitude_m"] = _f(np.min(tel["altitude_m"]))
+    out["bank_abs_max_deg"] = _f(np.max(np.abs(tel["phi_deg"])))
+    out["airspeed_min_m_s"] = _f(np.min(tel["airspeed_m_s"]))
+    out["airspeed_max_m_s"] = _f(np.max(tel["airspeed_m_s"]))
+    return out
+
+
+def fault_segment_metrics(res: RunResult, seg: Segment, idx: np.ndarray,
+                          steady: np.ndarray, err: np.ndarray) -> dict[str, Any]:
+    """bank_abs_max_deg, airspeed_min/max_m_s, min_altitude_m over the
+    segment; bank_error_max_deg (against the law's target bank) and
+    tilt_error_max_deg over its steady part."""
+    tel = res.telemetry
+    sc = res.scenario
+    phi = tel["phi_deg"][idx]
+    v = tel["airspeed_m_s"][idx]
+    out: dict[str, Any] = {
+        "bank_abs_max_deg": _f(np.max(np.abs(phi))),
+        "airspeed_min_m_s": _f(np.min(v)),
+        "airspeed_max_m_s": _f(np.max(v)),
+        "min_altitude_m": _f(np.min(tel["altitude_m"][idx])),
+    }
+    if steady.any():
+        phi_t = target_bank_deg(seg.turn_rate_deg_s, float(np.mean(v[steady])), seg.inverted,
+                                sc.gains["max_tilt"])
+        out["bank_error_max_deg"] = _f(np.max(np.abs(
+            np.asarray(wrap_deg(phi[steady] - phi_t), dtype=float))))
+        out["tilt_error_max_deg"] = _f(np.max(err[idx][steady]))
+    return out
+# --- end fault campaign ---
+
+
 def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     tel = res.telemetry
     sc = res.scenario
@@ -226,6 +306,8 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     out["max_altitude_loss_m"] = _f(max(0.0, h[0] - np.min(h)))
     sat = np.maximum.reduce([np.abs(tel[k][idx]) for k in ("aileron", "elevator", "rudder")])
     out["surface_saturation_frac"] = _f(np.mean(sat >= SAT_LEVEL))
+    if sc.modes is None:  # fault campaign (issue 7)
+        out.update(fault_segment_metrics(res, seg, idx, steady, tilt_error_deg(res)))
     return out
 
 
@@ -247,6 +329,8 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
         "sim_speed_x_realtime": _f(sim_s / res.wall_s) if res.wall_s > 0 else None,
         "wall_s": _f(res.wall_s),
     }
+    if sc.modes is None:
+        run.update(recovery_metrics(res))  # fault campaign (issue 7)
     if sc.modes is not None:
         run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
         run.update(failsafe_metrics(res))

@@ -21,6 +21,7 @@ import numpy as np
 
 from helical_sil import frames
 from helical_sil.board import Board
+from helical_sil.faults import SensorFaults  # fault campaign (issue 7)
 from helical_sil.scenario import Scenario
 
 G = 9.80665
@@ -129,6 +130,8 @@ def make_fdm(sc: Scenario) -> jsbsim.FGFDMExec:
             except Exception as e:  # jsbsim raises TrimFailureError
                 raise SimError(f"JSBSim trim failed for {sc.aircraft.name} at "
                                f"{sc.airspeed_m_s} m/s: {e}") from None
+        if sc.upset is not None:  # fault campaign (issue 7)
+            _release_upset(fdm, sc)
         level, wind_kt = TURBULENCE_LEVELS[sc.turbulence]
         if level:
             fdm["atmosphere/turb-type"] = 3
@@ -138,6 +141,37 @@ def make_fdm(sc: Scenario) -> jsbsim.FGFDMExec:
             fdm["atmosphere/turbulence/milspec/severity"] = 0
             fdm["atmosphere/turbulence/milspec/windspeed_at_20ft_AGL-fps"] = 0.0
     return fdm
+
+
+# --- fault campaign (issue 7) ---
+def _release_upset(fdm: jsbsim.FGFDMExec, sc: Scenario) -> None:
+    """After the trim at [initial] (its surface, throttle and pitch-trim settings
+    stay: the servo trims the harness carries over), re-initialise JSBSim at the
+    upset attitude, calibrated airspeed and body rates; no trim there."""
+    assert sc.upset is not None
+    u = sc.upset
+    keep = {k: fdm[k] for k in ("fcs/aileron-cmd-norm", "fcs/elevator-cmd-norm",
+                                "fcs/rudder-cmd-norm", "fcs/pitch-trim-cmd-norm")}
+    n_eng = fdm.get_propulsion().get_num_engines()
+    keep.update({f"fcs/throttle-cmd-norm[{e}]": fdm[f"fcs/throttle-cmd-norm[{e}]"]
+                 for e in range(n_eng)})
+    fdm["ic/h-sl-ft"] = sc.altitude_m / FT
+    fdm["ic/vc-kts"] = u.calibrated_airspeed_m_s / KT
+    fdm["ic/alpha-deg"] = 0.0  # velocity along the body axis: the attitude sets the path
+    fdm["ic/beta-deg"] = 0.0
+    fdm["ic/phi-deg"] = u.roll_deg
+    fdm["ic/theta-deg"] = u.pitch_deg
+    fdm["ic/psi-true-deg"] = u.heading_deg
+    fdm["ic/p-rad_sec"] = math.radians(u.p_deg_s)
+    fdm["ic/q-rad_sec"] = math.radians(u.q_deg_s)
+    fdm["ic/r-rad_sec"] = math.radians(u.r_deg_s)
+    for k, v in keep.items():
+        fdm[k] = v
+    if not fdm.run_ic():
+        raise SimError("JSBSim run_ic failed at the upset initial condition")
+    for k, v in keep.items():
+        fdm[k] = v
+# --- end fault campaign ---
 
 
 def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
@@ -333,6 +367,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
 
     rng = np.random.Generator(np.random.PCG64(sc.seed))
     bias = sc.gyro_bias_rad_s * rng.choice(np.array([-1.0, 1.0]), size=3)
+    faults = SensorFaults(sc)  # fault campaign (issue 7)
 
     segs = _segments(sc) if sc.modes is None else _mode_segments(sc, rcs)
     rc_ptr = -1
@@ -408,6 +443,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
                     gy + bias[1] + sc.gyro_noise_rad_s * ng[1],
                     gz + bias[2] + sc.gyro_noise_rad_s * ng[2],
                     vt + sc.airspeed_noise_m_s * ng[3], h, hdot)
+        meas = faults.apply(t, meas)  # fault campaign (issue 7): no-op without faults
         fifo.append(meas)
         if len(fifo) > sc.latency_steps + 1:
             fifo.popleft()
