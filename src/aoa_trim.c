@@ -35,7 +35,7 @@ const char *ht_aoa_param_name(ht_aoa_param_id_t id)
 
 static int deg_ok(q16_t d)
 {
-    return d >= -45 * Q16_ONE && d <= 45 * Q16_ONE;
+    return (d >= (-45 * Q16_ONE)) && (d <= (45 * Q16_ONE));
 }
 
 static int unit_ok(q14_t t)
@@ -51,24 +51,26 @@ static ht_aoa_param_id_t check(const ht_aoa_params_t *p)
     if (p->v_ref_cm_s < 100) {
         return HT_AOA_P_V_REF;
     }
-    if (p->v_enable_cm_s < 100 || (int32_t)p->v_ref_cm_s > 8 * (int32_t)p->v_enable_cm_s) {
+    if (p->v_enable_cm_s < 100 || (int32_t)p->v_ref_cm_s > (8 * (int32_t)p->v_enable_cm_s)) {
         return HT_AOA_P_V_ENABLE;
     }
-    if (p->load_max < Q16_ONE || p->load_max > 8 * Q16_ONE) {
+    if (p->load_max < Q16_ONE || p->load_max > (8 * Q16_ONE)) {
         return HT_AOA_P_LOAD_MAX;
     }
     const q16_t degs[4] = {p->aoa_normal_deg, p->aoa_normal_slope_deg, p->aoa_inverted_deg,
                            p->aoa_inverted_slope_deg};
     for (unsigned i = 0; i < 4u; i++) {
         if (!deg_ok(degs[i])) {
-            return (ht_aoa_param_id_t)((unsigned)HT_AOA_P_AOA_NORMAL + i);
+            const unsigned id = (unsigned)HT_AOA_P_AOA_NORMAL + i;
+            return (ht_aoa_param_id_t)id;
         }
     }
     const q14_t trims[4] = {p->trim_normal, p->trim_normal_slope, p->trim_inverted,
                             p->trim_inverted_slope};
     for (unsigned i = 0; i < 4u; i++) {
         if (!unit_ok(trims[i])) {
-            return (ht_aoa_param_id_t)((unsigned)HT_AOA_P_TRIM_NORMAL + i);
+            const unsigned id = (unsigned)HT_AOA_P_TRIM_NORMAL + i;
+            return (ht_aoa_param_id_t)id;
         }
     }
     return HT_AOA_P_NONE;
@@ -119,13 +121,16 @@ void ht_aoa_step(const ht_aoa_t *m, q14_t x, q14_t z, int16_t airspeed_cm_s, ht_
     }
     /* |load| = |Z| + X^2 / |Z| in Q14, limited to load_max (<= 8, so the
      * Q14 sum stays below 2^18 and X^2 / |Z| below 2^30: no overflow). */
-    unsigned inv = (z < 0) ? 1u : 0u;
+    unsigned inv = 0u;
+    if (z < 0) {
+        inv = 1u;
+    }
     int32_t az = (z < 0) ? -(int32_t)z : (int32_t)z;
     int32_t lim_q14 = m->load_max / 4;
     int32_t mag_q14 = lim_q14;
     if (az != 0) {
         int32_t x2_q28 = (int32_t)x * (int32_t)x;
-        int32_t q = (x2_q28 + az / 2) / az;
+        int32_t q = (x2_q28 + (az / 2)) / az;
         if (q < lim_q14) {
             mag_q14 = az + q;
             if (mag_q14 > lim_q14) {
@@ -143,7 +148,7 @@ void ht_aoa_step(const ht_aoa_t *m, q14_t x, q14_t z, int16_t airspeed_cm_s, ht_
     /* (v_ref / V)^2 with V >= v_enable >= 100 and v_ref <= 8 v_enable: r <= 8,
      * w <= 8 * 64 = 512. v_ref * 2^16 + V / 2 < 2^31. */
     int32_t v = airspeed_cm_s;
-    int32_t r_q16 = ((int32_t)m->v_ref_cm_s * 65536 + v / 2) / v;
+    int32_t r_q16 = (((int32_t)m->v_ref_cm_s * 65536) + (v / 2)) / v;
     int32_t r2_q16 = q_mul32(r_q16, r_q16, 16u);
     o.loading = q_mul32(mag_q16, r2_q16, 16u);
     o.aoa_rad = q_add_sat32(m->aoa0_rad[inv], q_mul32(m->aoa1_rad[inv], o.loading, 16u));

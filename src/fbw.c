@@ -35,13 +35,15 @@ int ht_fbw_init(ht_fbw_t *f, const ht_fbw_params_t *p, ht_fbw_param_id_t *bad_fi
         bad = HT_FBW_P_DEADBAND;
     } else if (p->turn_rate_max_deg_s < 1 || p->turn_rate_max_deg_s > 360) {
         bad = HT_FBW_P_TURN_RATE_MAX;
-    } else if (p->pitch_max <= 0 || p->pitch_max > 4 * Q16_ONE) {
+    } else if (p->pitch_max <= 0 || p->pitch_max > (4 * Q16_ONE)) {
         bad = HT_FBW_P_PITCH_MAX;
     } else if (p->inverted_input > 15u) {
         bad = HT_FBW_P_INVERTED_INPUT;
     } else if (p->inverted_threshold_us < OS_RC_VALID_MIN_US ||
                p->inverted_threshold_us > OS_RC_VALID_MAX_US) {
         bad = HT_FBW_P_INVERTED_THRESHOLD;
+    } else {
+        /* every field is in range: bad stays HT_FBW_P_NONE */
     }
     if (bad != HT_FBW_P_NONE) {
         if (bad_field != NULL) {
@@ -69,7 +71,7 @@ q14_t ht_fbw_stick_q14(const os_rc_cal_t *cal, uint16_t deadband_us, uint16_t pu
         return 0;
     }
     int32_t s = (int32_t)pulse_us - (int32_t)cal->centre_us;
-    if (cal->reversed) {
+    if (cal->reversed != 0u) {
         s = -s;
     }
     int32_t mag = (s < 0) ? -s : s;
@@ -78,7 +80,7 @@ q14_t ht_fbw_stick_q14(const os_rc_cal_t *cal, uint16_t deadband_us, uint16_t pu
     }
     int32_t num = (mag - (int32_t)deadband_us) * 16384; /* < 65536 * 16384 = 2^30 */
     int32_t den = (int32_t)cal->travel_us - (int32_t)deadband_us;
-    int32_t q = (num + den / 2) / den; /* ties away from zero (on the magnitude) */
+    int32_t q = (num + (den / 2)) / den; /* ties away from zero (on the magnitude) */
     if (q > Q14_ONE) {
         q = Q14_ONE;
     }
@@ -108,6 +110,6 @@ void ht_fbw_step(const ht_fbw_t *f, const os_rc_map_t *map, const uint16_t rc_us
     o.turn_rate_rad_s = q_mul32(f->turn_rate_max_rad_s, o.aileron_stick, 14u);
     o.pitch_ratio = q_mul32(f->pitch_max, o.elevator_stick, 14u);
     uint16_t sw = pulse_at(rc_us, rc_count, f->inverted_input);
-    o.inverted = (uint8_t)(pulse_valid(sw) && sw >= f->inverted_threshold_us);
+    o.inverted = (pulse_valid(sw) && (sw >= f->inverted_threshold_us)) ? 1u : 0u;
     *out = o;
 }

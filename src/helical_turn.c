@@ -21,7 +21,7 @@
 #define RATIO_FROM_OMEGA_S 1121189833L
 #define RATIO_SHIFT        35u
 
-#define Q28_ONE ((int32_t)1 << 28)
+#define Q28_ONE ((int32_t)0x10000000) /* 2^28 */
 
 static q14_t q14_from_q28(int32_t v)
 {
@@ -78,7 +78,10 @@ static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int3
     int32_t pitch[2] = {(pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16, Q16_ONE}; /* (Yt, t) */
     (void)q_unit_q28(roll, 2u, roll);
     (void)q_unit_q28(pitch, 2u, pitch);
-    int32_t sign = inverted ? -1 : 1;
+    int32_t sign = 1;
+    if (inverted != 0u) {
+        sign = -1;
+    }
     tilt[0] = sign * qi_mul32_fit(roll[0], pitch[1], 28u);
     tilt[1] = pitch[0];
     tilt[2] = sign * qi_mul32_fit(roll[1], pitch[1], 28u);
@@ -110,7 +113,7 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], in
 {
     int32_t u[2] = {in->x, in->z}; /* becomes [X, Z] / a */
     int32_t a;
-    if (q_unit_q28(u, 2u, u)) {
+    if (q_unit_q28(u, 2u, u) != 0) {
         /* [X, Z].u = |[X, Z]| <= 2.83: each product below 2^30 */
         a = qi_mul32x16_fit(u[0], in->x, 14u) + qi_mul32x16_fit(u[1], in->z, 14u);
     } else {
@@ -147,7 +150,7 @@ static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_
 {
     q16_t gp = ctl->gains.kp[axis];
     q16_t gd = ctl->gains.kd[axis];
-    if (ctl->schedule) { /* s_p = s_ff; unscheduled, s_p = 1 costs nothing */
+    if (ctl->schedule != 0u) { /* s_p = s_ff; unscheduled, s_p = 1 costs nothing */
         gp = qi_mul32_fit(gp, s_ff_q20, 20u);
         gd = qi_mul32_fit(gd, s_ff_q20, 20u);
     }

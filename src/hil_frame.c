@@ -8,14 +8,15 @@ uint16_t hil_crc16(uint16_t crc, const uint8_t *data, size_t n)
 {
     /* Bitwise rather than a 512-byte table: a frame is at most 66 bytes, and
      * flash is the scarcer resource on the smallest boards. */
+    uint16_t c = crc;
     for (size_t i = 0; i < n; i++) {
-        crc ^= (uint16_t)((uint16_t)data[i] << 8);
+        c ^= (uint16_t)((uint16_t)data[i] << 8);
         for (unsigned bit = 0; bit < 8u; bit++) {
-            crc = (crc & 0x8000u) ? (uint16_t)(((unsigned)crc << 1) ^ 0x1021u)
-                                  : (uint16_t)((unsigned)crc << 1);
+            c = ((c & 0x8000u) != 0u) ? (uint16_t)(((unsigned)c << 1) ^ 0x1021u)
+                                      : (uint16_t)((unsigned)c << 1);
         }
     }
-    return crc;
+    return c;
 }
 
 size_t hil_encode(uint8_t id, const uint8_t *payload, uint8_t len, uint8_t *out, size_t out_size)
@@ -104,7 +105,8 @@ int hil_decoder_push(hil_decoder_t *d, uint8_t byte)
         d->state = (uint8_t)((d->len == 0u) ? HIL_WAIT_CRC_LO : HIL_IN_PAYLOAD);
         return 0;
     case HIL_IN_PAYLOAD:
-        d->payload[d->count++] = byte;
+        d->payload[d->count] = byte;
+        d->count++;
         d->crc = hil_crc16(d->crc, &byte, 1u);
         if (d->count == d->len) {
             d->state = (uint8_t)HIL_WAIT_CRC_LO;
@@ -145,7 +147,7 @@ void hil_put_i32(uint8_t *p, int32_t v)
 {
     uint32_t u = (uint32_t)v;
     hil_put_u16(p, (uint16_t)(u & 0xFFFFu));
-    hil_put_u16(p + 2, (uint16_t)(u >> 16));
+    hil_put_u16(&p[2], (uint16_t)(u >> 16));
 }
 
 uint16_t hil_get_u16(const uint8_t *p)
@@ -160,6 +162,6 @@ int16_t hil_get_i16(const uint8_t *p)
 
 int32_t hil_get_i32(const uint8_t *p)
 {
-    uint32_t u = (uint32_t)hil_get_u16(p) | ((uint32_t)hil_get_u16(p + 2) << 16);
+    uint32_t u = (uint32_t)hil_get_u16(p) | ((uint32_t)hil_get_u16(&p[2]) << 16);
     return (int32_t)u;
 }

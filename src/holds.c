@@ -5,6 +5,7 @@
  */
 #include "helical/holds.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #define HOLD_GAIN_MAX_Q16   (64L * 65536L)
@@ -20,7 +21,7 @@ static int32_t div_round_s32(int32_t a, int32_t b)
     int32_t q = a / b;
     int32_t r = a % b;
     int32_t r_abs = (r < 0) ? -r : r;
-    if (2 * r_abs >= b) {
+    if ((2 * r_abs) >= b) {
         q += (a < 0) ? -1 : 1;
     }
     return q;
@@ -69,7 +70,10 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     if (s == NULL || ht_alt_hold_check(p) != HT_HOLD_OK) {
         return 0;
     }
-    const int idx = (inverted != 0u) ? 1 : 0;
+    int idx = 0;
+    if (inverted != 0u) {
+        idx = 1;
+    }
     const int32_t err_cm =
         q_clamp32(q_sub_sat32(target_cm, altitude_cm), -p->max_error_cm, p->max_error_cm);
     const int32_t err_m_q8 = cm_to_m_q8(err_cm);
@@ -89,9 +93,9 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     /* Output with the old integral decides whether integrating is allowed. */
     const int32_t pd_q16 = q_sub_sat32(p_term_q16, d_term_q16);
     const int32_t before_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
-    const int saturated_high = before_q16 >= p->max_pitch;
-    const int saturated_low = before_q16 <= -p->max_pitch;
-    const int in_band = err_cm <= p->integral_band_cm && err_cm >= -p->integral_band_cm;
+    const bool saturated_high = before_q16 >= p->max_pitch;
+    const bool saturated_low = before_q16 <= -p->max_pitch;
+    const bool in_band = (err_cm <= p->integral_band_cm) && (err_cm >= -p->integral_band_cm);
     if (in_band && !((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
         integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
     }

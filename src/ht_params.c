@@ -43,7 +43,8 @@ static ht_param_id_t first_bad_param(const ht_params_t *p)
                             p->kd_aileron,  p->kd_elevator,  p->kd_rudder};
     for (int i = 0; i < 9; i++) {
         if (!gain_ok(gains[i])) {
-            return (ht_param_id_t)(HT_P_KP_AILERON + i);
+            const int id = (int)HT_P_KP_AILERON + i;
+            return (ht_param_id_t)id;
         }
     }
     if (p->v_min_cm_s < HT_V_MIN_LOWEST_CM_S || p->v_min_cm_s > INT16_MAX) {

@@ -83,14 +83,14 @@ os_status_t os_rc_to_q14(const os_rc_cal_t *cal, uint16_t pulse_us, q14_t *out)
         return OS_ERR_RANGE;
     }
     int32_t d = (int32_t)pulse_us - (int32_t)cal->centre_us;
-    if (cal->reversed) {
+    if (cal->reversed != 0u) {
         d = -d;
     }
     /* |d| <= 1400 and travel >= 100: the quotient is below 2^18 and the
      * numerator below 2^25, so uint32 holds it. Round half away from zero. */
     const uint32_t mag = (d < 0) ? (uint32_t)-d : (uint32_t)d;
     const uint32_t travel = cal->travel_us;
-    const uint32_t q = (mag * (uint32_t)Q14_ONE + travel / 2u) / travel;
+    const uint32_t q = ((mag * (uint32_t)Q14_ONE) + (travel / 2u)) / travel;
     const int32_t v = (d < 0) ? -(int32_t)q : (int32_t)q;
     *out = clamp_q14(v, cal->unipolar ? 0 : -(int32_t)Q14_ONE, (int32_t)Q14_ONE);
     return OS_OK;

@@ -36,8 +36,11 @@ static const char *const modes_names[HT_MODES_P_COUNT] = {
 
 static void append(char *buf, unsigned size, unsigned *at, const char *s)
 {
-    while (*s != '\0' && *at + 1u < size) {
-        buf[(*at)++] = *s++;
+    const char *c = s;
+    while ((*c != '\0') && ((*at + 1u) < size)) {
+        buf[*at] = *c;
+        (*at)++;
+        c++;
     }
     buf[*at] = '\0';
 }
@@ -60,6 +63,8 @@ void ht_modes_bad_name(const ht_modes_bad_t *bad, char *buf, unsigned size)
         sub = ht_nav_param_name((ht_nav_param_id_t)bad->sub);
     } else if (bad->field == HT_MODES_P_AOA) {
         sub = ht_aoa_param_name((ht_aoa_param_id_t)bad->sub);
+    } else {
+        /* a field without sub-fields: the name alone */
     }
     if (sub != NULL && sub[0] != '\0') {
         append(buf, size, &at, ".");
@@ -101,20 +106,30 @@ void ht_modes_params_default(ht_modes_params_t *p)
     d.fbw = fbw;
     d.nav = nav;
     d.aoa = aoa;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.alt.kp_pitch_per_m = Q16_FROM_REAL(0.03);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.alt.ki_pitch_per_m_s = Q16_FROM_REAL(0.005);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.alt.kd_pitch_per_m_s = Q16_FROM_REAL(0.05);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.alt.max_pitch = Q16_FROM_REAL(0.3);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.alt.max_integral_pitch = Q16_FROM_REAL(0.2);
     d.alt.max_error_cm = 5000;
     d.alt.integral_band_cm = 1000;
     d.alt.rate_hz = 40u;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.speed.throttle_trim = Q14_FROM_REAL(0.5);
     d.speed.throttle_min = 0;
     d.speed.throttle_max = Q14_ONE;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.speed.kp_throttle_per_m_s = Q16_FROM_REAL(0.1);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.speed.ki_throttle_per_m = Q16_FROM_REAL(0.02);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.speed.kff_throttle_per_pitch = Q16_FROM_REAL(0.5);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     d.speed.max_integral_throttle = Q14_FROM_REAL(0.3);
     d.speed.rate_hz = 40u;
     *p = d;
@@ -122,10 +137,12 @@ void ht_modes_params_default(ht_modes_params_t *p)
 
 static ht_modes_param_id_t check_own(const ht_modes_params_t *p)
 {
-    const os_rc_cal_t *cals[4] = {&p->rc.aileron, &p->rc.elevator, &p->rc.rudder, &p->rc.throttle};
+    // cppcheck-suppress misra-c2012-9.3 ; false positive: all 4 elements are initialized
+    const os_rc_cal_t *cals[] = {&p->rc.aileron, &p->rc.elevator, &p->rc.rudder, &p->rc.throttle};
     for (unsigned i = 0; i < 4u; i++) {
         if (os_rc_cal_check(cals[i]) != OS_OK || cals[i]->input >= HT_MODES_RC_MAX) {
-            return (ht_modes_param_id_t)((unsigned)HT_MODES_P_RC_AILERON + i);
+            const unsigned id = (unsigned)HT_MODES_P_RC_AILERON + i;
+            return (ht_modes_param_id_t)id;
         }
     }
     if (p->mode_input >= HT_MODES_RC_MAX) {
@@ -147,7 +164,7 @@ static ht_modes_param_id_t check_own(const ht_modes_params_t *p)
     if (p->turn_slew_deg_s2 < 1 || p->turn_slew_deg_s2 > 10000) {
         return HT_MODES_P_TURN_SLEW;
     }
-    if (p->pitch_slew_per_s <= 0 || p->pitch_slew_per_s > 64 * Q16_ONE) {
+    if (p->pitch_slew_per_s <= 0 || p->pitch_slew_per_s > (64 * Q16_ONE)) {
         return HT_MODES_P_PITCH_SLEW;
     }
     if (p->cruise_cm_s < 100) {
@@ -183,6 +200,8 @@ int ht_modes_init(ht_modes_t *m, const ht_modes_params_t *p, const ht_controller
         } else if (p->fbw.inverted_input >= HT_MODES_RC_MAX) {
             b.field = HT_MODES_P_FBW;
             b.sub = (int)HT_FBW_P_INVERTED_INPUT;
+        } else {
+            /* the FBW parameters are valid */
         }
     }
     if (b.field == HT_MODES_P_NONE) {
@@ -224,10 +243,10 @@ int ht_modes_init(ht_modes_t *m, const ht_modes_params_t *p, const ht_controller
     m->rc_recover_ticks = p->rc_recover_ticks;
     m->blend_ticks = p->blend_ticks;
     /* deg/s^2 -> rad/s per tick (Q16), at least 1 LSB. */
-    int32_t slew = q_mul32((int32_t)p->turn_slew_deg_s2 * 65536, DEG_TO_RAD_Q30, 30u);
-    slew = (slew + (int32_t)p->rate_hz / 2) / (int32_t)p->rate_hz;
-    m->turn_slew_rad_s_per_tick = (slew < 1) ? 1 : slew;
-    int32_t ps = (p->pitch_slew_per_s + (int32_t)p->rate_hz / 2) / (int32_t)p->rate_hz;
+    int32_t turn_slew = q_mul32((int32_t)p->turn_slew_deg_s2 * 65536, DEG_TO_RAD_Q30, 30u);
+    turn_slew = (turn_slew + ((int32_t)p->rate_hz / 2)) / (int32_t)p->rate_hz;
+    m->turn_slew_rad_s_per_tick = (turn_slew < 1) ? 1 : turn_slew;
+    int32_t ps = (p->pitch_slew_per_s + ((int32_t)p->rate_hz / 2)) / (int32_t)p->rate_hz;
     m->pitch_slew_per_tick = (ps < 1) ? 1 : ps;
     m->max_tilt = ctl->max_tilt;
     m->v_min_cm_s = ctl->v_min_cm_s;
@@ -290,9 +309,10 @@ static uint16_t inc_sat16(uint16_t v)
 /* RC bookkeeping: good frames, loss and recovery. */
 static uint8_t update_rc(const ht_modes_t *m, ht_modes_state_t *st, const ht_modes_input_t *in)
 {
-    if (frame_good(m, in)) {
+    if (frame_good(m, in) != 0) {
         uint8_t n = (in->rc_count > HT_MODES_RC_MAX) ? (uint8_t)HT_MODES_RC_MAX : in->rc_count;
         for (unsigned i = 0; i < HT_MODES_RC_MAX; i++) {
+            // cppcheck-suppress knownConditionTrueFalse ; false positive: n = min(rc_count, 16)
             st->rc_us[i] = (i < n) ? in->rc_us[i] : 0u;
         }
         st->rc_count = n;
@@ -368,12 +388,13 @@ static q14_t lerp_q14(q14_t from, q14_t to, q14_t w)
 
 static q14_t count_weight(uint16_t count, uint16_t ticks)
 {
-    return (q14_t)(((uint32_t)count * 16384u + ticks / 2u) / ticks);
+    const uint32_t w = (((uint32_t)count * 16384u) + ((uint32_t)ticks / 2u)) / ticks;
+    return (q14_t)w;
 }
 
 static uint16_t count_toward(uint16_t count, int up, uint16_t ticks)
 {
-    if (up) {
+    if (up != 0) {
         return (count < ticks) ? (uint16_t)(count + 1u) : ticks;
     }
     return (count > 0u) ? (uint16_t)(count - 1u) : 0u;
@@ -400,19 +421,19 @@ void ht_modes_step(const ht_modes_t *m, ht_modes_state_t *st, const ht_modes_inp
     o.selected_mode = (uint8_t)selected;
     o.failsafe = st->rc_lost;
     o.mode = (uint8_t)mode;
-    o.mode_changed = (uint8_t)(mode != (ht_mode_t)st->mode);
-    if (o.mode_changed && (mode == HT_MODE_WAYPOINT || mode == HT_MODE_RTH)) {
+    o.mode_changed = (mode != (ht_mode_t)st->mode) ? 1u : 0u;
+    if ((o.mode_changed != 0u) && (mode == HT_MODE_WAYPOINT || mode == HT_MODE_RTH)) {
         ht_nav_start_leg(&st->nav, in->north_cm, in->east_cm);
     }
     st->mode = (uint8_t)mode;
 
     /* 2. The pilot: sticks of the last good frame (neutral before any). */
     ht_fbw_output_t pilot = {0};
-    if (st->have_rc) {
+    if (st->have_rc != 0u) {
         (void)os_rc_command(&m->rc, st->rc_us, st->rc_count, &o.manual);
         ht_fbw_step(&m->fbw, &m->rc, st->rc_us, st->rc_count, &pilot);
     }
-    if (st->rc_lost) {
+    if (st->rc_lost != 0u) {
         ht_fbw_output_t none = {0};
         pilot = none;
     }
@@ -428,7 +449,7 @@ void ht_modes_step(const ht_modes_t *m, ht_modes_state_t *st, const ht_modes_inp
     /* 4. Targets per mode. */
     q16_t turn_t = turn_match(m, in);
     q16_t pitch_t = q_sub_sat32(pitch_match(in), offset);
-    uint8_t inverted = (uint8_t)(in->z < 0);
+    uint8_t inverted = (in->z < 0) ? 1u : 0u;
     ht_nav_input_t ni = {in->north_cm,      in->east_cm,       in->vel_north_cm_s,
                          in->vel_east_cm_s, in->heading_north, in->heading_east};
     int speed_hold = 0;

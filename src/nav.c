@@ -5,10 +5,11 @@
  */
 #include "helical/nav.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #define DEG_TO_RAD_Q30 18740330L /* pi / 180 in Q30 */
-#define Q28_ONE        HT_Q28_ONE
+#define Q28_ONE        ((int32_t)HT_Q28_ONE)
 
 static const char *const nav_names[HT_NAV_P_COUNT] = {
     "",
@@ -88,7 +89,8 @@ static int32_t inv_q36(int32_t len)
     uint32_t l = (uint32_t)len;
     uint32_t q = ((uint32_t)1u << 31) / l;
     uint32_t r = ((uint32_t)1u << 31) % l;
-    return (int32_t)(q * 32u + (r * 32u) / l);
+    const uint32_t v = (q * 32u) + ((r * 32u) / l);
+    return (int32_t)v;
 }
 
 int ht_nav_init(ht_nav_t *nav, const ht_nav_params_t *p, const ht_waypoint_t *waypoints,
@@ -202,7 +204,7 @@ static int motion(const ht_nav_t *nav, const ht_nav_input_t *in, int32_t *un, in
         return 1;
     }
     int32_t hn, he;
-    if (q_unit2_q28(in->heading_north, in->heading_east, &hn, &he)) {
+    if (q_unit2_q28(in->heading_north, in->heading_east, &hn, &he) != 0) {
         *un = hn;
         *ue = he;
         return 1;
@@ -225,7 +227,7 @@ static int32_t sin_to(int32_t un, int32_t ue, int32_t dn, int32_t de, uint8_t *f
 {
     uint8_t b = 0u;
     int32_t s = ht_nav_sin_error_q28(un, ue, dn, de, &b);
-    if (b) {
+    if (b != 0u) {
         *flags |= HT_NAV_F_BEYOND_90;
     }
     return s;
@@ -250,7 +252,7 @@ static void guide_leg(const ht_nav_t *nav, pt_t a, pt_t b, const ht_nav_input_t 
     int32_t to_n = q_sub_sat32(b.n, in->north_cm);
     int32_t to_e = q_sub_sat32(b.e, in->east_cm);
     int32_t tn, te;
-    if (q_unit2_q28(to_n, to_e, &tn, &te)) {
+    if (q_unit2_q28(to_n, to_e, &tn, &te) != 0) {
         o->distance_cm = dot_u(tn, te, to_n, to_e);
     }
     /* Track direction; a leg of length 0 is flown as go-to-point. */
@@ -282,7 +284,9 @@ static void guide_leg(const ht_nav_t *nav, pt_t a, pt_t b, const ht_nav_input_t 
     int32_t axt = abs32_sat(xt);
     int32_t h = 0;
     if (axt < nav->l1_cm) {
-        uint32_t d2 = (uint32_t)(nav->l1_cm - axt) * (uint32_t)(nav->l1_cm + axt);
+        const int32_t l1_minus = nav->l1_cm - axt;
+        const int32_t l1_plus = nav->l1_cm + axt;
+        uint32_t d2 = (uint32_t)l1_minus * (uint32_t)l1_plus;
         h = (int32_t)q_isqrt32_round(d2);
     }
     /* Vector to the L1 point: h * k - xt * n, n = (-k_e, k_n) the right normal. */
@@ -304,7 +308,7 @@ static void guide_loiter(const ht_nav_t *nav, pt_t c, const ht_nav_input_t *in, 
     int32_t rn = q_sub_sat32(in->north_cm, c.n), re = q_sub_sat32(in->east_cm, c.e);
     int32_t on, oe; /* outward unit vector; north at the centre */
     int32_t d = 0;
-    if (q_unit2_q28(rn, re, &on, &oe)) {
+    if (q_unit2_q28(rn, re, &on, &oe) != 0) {
         d = dot_u(on, oe, rn, re);
     } else {
         on = Q28_ONE;
@@ -334,7 +338,7 @@ static pt_t wp_cm(const ht_waypoint_t *w)
     return p;
 }
 
-static int nav_ok(const ht_nav_t *nav, ht_nav_state_t *s, const ht_nav_input_t *in,
+static int nav_ok(const ht_nav_t *nav, const ht_nav_state_t *s, const ht_nav_input_t *in,
                   ht_nav_output_t *out)
 {
     if (out == NULL) {
@@ -363,7 +367,7 @@ void ht_nav_waypoint_step(const ht_nav_t *nav, ht_nav_state_t *s, const ht_nav_i
     if (s->index >= nav->count) {
         s->index = 0u; /* a state from another list: start over */
     }
-    if (s->done) {
+    if (s->done != 0u) {
         const ht_waypoint_t *last = &nav->waypoints[nav->count - 1u];
         guide_loiter(nav, wp_cm(last), in, &o);
         o.target_alt_cm = last->alt_m * 100;
@@ -375,15 +379,15 @@ void ht_nav_waypoint_step(const ht_nav_t *nav, ht_nav_state_t *s, const ht_nav_i
     pt_t b = wp_cm(&nav->waypoints[s->index]);
     guide_leg(nav, a, b, in, &o);
     /* Arrival: within the radius, or past the perpendicular through b. */
-    int arrived = (o.distance_cm <= nav->arrival_cm);
-    if (!arrived && !(o.flags & HT_NAV_F_ZERO_LEG)) {
+    bool arrived = (o.distance_cm <= nav->arrival_cm);
+    if (!arrived && ((o.flags & (uint8_t)HT_NAV_F_ZERO_LEG) == 0u)) {
         int32_t ln = q_sub_sat32(b.n, a.n), le = q_sub_sat32(b.e, a.e), kn, ke;
         (void)q_unit2_q28(ln, le, &kn, &ke);
         int32_t len = dot_u(kn, ke, ln, le);
         int32_t along =
             dot_u(kn, ke, q_sub_sat32(in->north_cm, a.n), q_sub_sat32(in->east_cm, a.e));
         if (along >= len) {
-            arrived = 1;
+            arrived = true;
             o.flags |= HT_NAV_F_PASSED;
         }
     }
@@ -394,15 +398,15 @@ void ht_nav_waypoint_step(const ht_nav_t *nav, ht_nav_state_t *s, const ht_nav_i
         }
         s->from_north_cm = b.n;
         s->from_east_cm = b.e;
-        if (s->index + 1u < nav->count) {
+        if ((s->index + 1u) < nav->count) {
             s->index++;
-        } else if (nav->loop) {
+        } else if (nav->loop != 0u) {
             s->index = 0u;
         } else {
             s->done = 1u;
         }
         ht_nav_output_t n = {0};
-        if (s->done) {
+        if (s->done != 0u) {
             guide_loiter(nav, b, in, &n);
             n.target_alt_cm = nav->waypoints[s->index].alt_m * 100;
         } else {
@@ -438,7 +442,7 @@ void ht_nav_home_step(const ht_nav_t *nav, ht_nav_state_t *s, const ht_nav_input
             s->home_loiter = 1u;
         }
     }
-    if (s->home_loiter) {
+    if (s->home_loiter != 0u) {
         ht_nav_output_t l = {0};
         guide_loiter(nav, home, in, &l);
         l.target_alt_cm = nav->home_alt_cm;

@@ -71,13 +71,14 @@ os_status_t os_config_check(const os_config_t *cfg, uint8_t *bad_channel)
 /* The end points, applied last. An inverted pair yields min_us (documented). */
 static uint16_t limit(const os_channel_t *ch, int32_t pulse)
 {
-    if (pulse > (int32_t)ch->max_us) {
-        pulse = ch->max_us;
+    int32_t p = pulse;
+    if (p > (int32_t)ch->max_us) {
+        p = ch->max_us;
     }
-    if (pulse < (int32_t)ch->min_us) {
-        pulse = ch->min_us;
+    if (p < (int32_t)ch->min_us) {
+        p = ch->min_us;
     }
-    return (uint16_t)pulse;
+    return (uint16_t)p;
 }
 
 uint16_t os_pulse_us(const os_channel_t *ch, q14_t command)
@@ -90,14 +91,18 @@ uint16_t os_pulse_us(const os_channel_t *ch, q14_t command)
         c = Q14_ONE;
     } else if (c < -Q14_ONE) {
         c = -Q14_ONE;
+    } else {
+        /* already within [-1, 1] */
     }
-    if (ch->reversed) {
+    if (ch->reversed != 0u) {
         c = -c; /* safe: c is already within [-16384, 16384] */
     }
     /* |c * travel| <= 2^14 * 65535 < 2^31. Round half away from zero so a
      * reversed channel mirrors a normal one exactly. */
     const int32_t prod = c * (int32_t)ch->travel_us;
-    const int32_t half = (int32_t)1 << 13;
+    const int32_t half = 8192; /* 2^13 */
+    /* both operands of >> are non-negative: a plain division by 2^14 */
+    // cppcheck-suppress misra-c2012-10.1 ; non-negative signed operand of >>
     const int32_t offset = (prod >= 0) ? ((prod + half) >> 14) : -((-prod + half) >> 14);
     return limit(ch, (int32_t)ch->centre_us + (int32_t)ch->trim_us + offset);
 }

@@ -7,9 +7,18 @@
 
 #include "q_inline.h"
 
-/* The library's rounding shifts rely on arithmetic >> of negative values. */
+/* The library's rounding shifts rely on arithmetic >> of negative values:
+ * this is the check that the MISRA 10.1 suppressions on them point to. */
+// cppcheck-suppress [misra-c2012-10.1, shiftNegativeLHS] ; the check itself
 _Static_assert((-1 >> 1) == -1, "signed right shift must be arithmetic");
+// cppcheck-suppress [misra-c2012-10.1, shiftNegativeLHS] ; the check itself
 _Static_assert((-3L >> 1) == -2L, "signed right shift must be arithmetic");
+
+/* Powers of two in the Q formats of this file (signed, without a signed shift). */
+#define Q26_ONE_I32   ((int32_t)0x04000000) /* 2^26 */
+#define Q28_ONE_I32   ((int32_t)0x10000000) /* 2^28 */
+#define Q28_THREE_I32 ((int32_t)0x30000000) /* 3 * 2^28 */
+#define Q30_ONE_I32   ((int32_t)0x40000000) /* 2^30 */
 
 int16_t q_sat16(int32_t x)
 {
@@ -55,7 +64,8 @@ int32_t q_rshift_round(int32_t x, unsigned shift)
 q14_t q14_mul(q14_t a, q14_t b)
 {
     int32_t p = Q_TARGET_MUL16(a, b);
-    return qi_sat16((p + (1 << 13)) >> 14);
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (static assert above)
+    return qi_sat16((p + 8192) >> 14);
 }
 
 /* ---- the wide multiply (see q_inline.h) ---------------------------------- */
@@ -110,28 +120,34 @@ static QI_ALWAYS_INLINE int32_t table_interp_q15(const uint16_t *table, uint32_t
 {
     int32_t t0 = table[i];
     int32_t t1 = table[i + 1u];
-    return t0 + (((t1 - t0) * (int32_t)frac_q15 + (1 << 14)) >> 15);
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (static assert above)
+    return t0 + ((((t1 - t0) * (int32_t)frac_q15) + 16384) >> 15);
 }
 
 int32_t q_rsqrt_q28(int32_t s_q28)
 {
-    s_q28 = q_clamp32(s_q28, (int32_t)1 << 26, ((int32_t)1 << 30) - 1);
+    const int32_t s_clamped = q_clamp32(s_q28, Q26_ONE_I32, Q30_ONE_I32 - 1);
     /* [1/4, 1) is scaled by 4 into [1, 4): the root then halves, y doubles. */
-    unsigned quarter = (s_q28 < ((int32_t)1 << 28)) ? 1u : 0u;
-    s_q28 <<= 2u * quarter;
-    uint32_t u = (uint32_t)s_q28;
+    unsigned quarter = 0u;
+    if (s_clamped < Q28_ONE_I32) {
+        quarter = 1u;
+    }
+    uint32_t u = (uint32_t)s_clamped << (2u * quarter); /* in [2^28, 2^30) */
+    const int32_t s = (int32_t)u;
     int32_t y_q28;
     if (u < ((uint32_t)1 << 29)) { /* [1, 2): steps of 2^22 */
         uint32_t off = u - ((uint32_t)1 << 28);
-        y_q28 = table_interp_q15(rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) << 13;
+        /* Q15 -> Q28 */
+        y_q28 = table_interp_q15(rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) * 8192;
     } else { /* [2, 4): steps of 2^23 */
         uint32_t off = u - ((uint32_t)1 << 29);
-        y_q28 = table_interp_q15(rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) << 13;
+        y_q28 = table_interp_q15(rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) * 8192;
     }
     /* Newton for 1/sqrt: y <- y * (3 - s*y^2) / 2 squares the relative error. */
-    int32_t sy2_q28 = qi_mul32_fit(s_q28, qi_mul32_fit(y_q28, y_q28, 28u), 28u);
-    y_q28 = qi_mul32_fit(y_q28, (((int32_t)3 << 28) - sy2_q28) / 2, 28u);
-    return y_q28 << quarter;
+    int32_t sy2_q28 = qi_mul32_fit(s, qi_mul32_fit(y_q28, y_q28, 28u), 28u);
+    y_q28 = qi_mul32_fit(y_q28, (Q28_THREE_I32 - sy2_q28) / 2, 28u);
+    const uint32_t y_u = (uint32_t)y_q28 << quarter; /* y_q28 > 0 */
+    return (int32_t)y_u;
 }
 
 int32_t q_recip_q30(int32_t x, unsigned *exponent)
@@ -140,11 +156,12 @@ int32_t q_recip_q30(int32_t x, unsigned *exponent)
     unsigned lz = qi_clz32(ux);
     *exponent = 31u - lz;      /* x in [2^e, 2^(e+1)) */
     uint32_t m_q31 = ux << lz; /* the mantissa in [1, 2), Q31 */
-    int32_t y_q30 = table_interp_q15(recip_table_q15, (m_q31 >> 26) & 31u, (m_q31 >> 11) & 0x7FFFu)
-                    << 15;
+    /* Q15 -> Q30 */
+    int32_t y_q30 =
+        table_interp_q15(recip_table_q15, (m_q31 >> 26) & 31u, (m_q31 >> 11) & 0x7FFFu) * 32768;
     /* Newton for 1/m: y <- y + y * (1 - m*y) squares the relative error. */
     int32_t my_q30 = qi_mul32_fit((int32_t)(m_q31 >> 1), y_q30, 30u);
-    return y_q30 + qi_mul32_fit(y_q30, ((int32_t)1 << 30) - my_q30, 30u);
+    return y_q30 + qi_mul32_fit(y_q30, Q30_ONE_I32 - my_q30, 30u);
 }
 
 /* ---- division and square roots ------------------------------------------ */
@@ -158,7 +175,8 @@ q14_t q14_div(q14_t num, q14_t den)
     int32_t d = den;
     int32_t an = (n < 0) ? -n : n;
     int32_t ad = (d < 0) ? -d : d;
-    int32_t q = (an + ad / 2) / ad; /* ties away from zero */
+    // cppcheck-suppress zerodivcond ; den == 0 returned above, so ad >= 1
+    int32_t q = (an + (ad / 2)) / ad; /* ties away from zero */
     return qi_sat16(((n < 0) != (d < 0)) ? -q : q);
 }
 
@@ -170,14 +188,15 @@ q14_t q14_recip(q14_t x)
 uint16_t q_isqrt32(uint32_t x)
 {
     /* Digit-by-digit (base 4) square root: 16 iterations, no division. */
+    uint32_t rem = x;
     uint32_t root = 0u;
-    uint32_t bit = 1uL << 30;
-    while (bit > x) {
+    uint32_t bit = (uint32_t)1u << 30;
+    while (bit > rem) {
         bit >>= 2;
     }
     while (bit != 0u) {
-        if (x >= root + bit) {
-            x -= root + bit;
+        if (rem >= (root + bit)) {
+            rem -= root + bit;
             root = (root >> 1) + bit;
         } else {
             root >>= 1;
@@ -191,7 +210,7 @@ uint32_t q_isqrt32_round(uint32_t x)
 {
     uint32_t s = q_isqrt32(x);
     /* round up when x >= s^2 + s + 1, i.e. x - s^2 > s: (s + 1/2)^2 = s^2 + s + 1/4 */
-    return (x - s * s > s) ? s + 1u : s;
+    return ((x - (s * s)) > s) ? (s + 1u) : s;
 }
 
 q14_t q14_sqrt(q14_t x)
@@ -217,7 +236,7 @@ q14_t q14_dot3(const q14_t a[3], const q14_t b[3])
 static q14_t cross_term(q14_t a, q14_t b, q14_t c, q14_t d)
 {
     /* a*b - c*d: each product is in [-2^30, 2^30], so the difference fits. */
-    int32_t s = (int32_t)a * b - (int32_t)c * d;
+    int32_t s = ((int32_t)a * b) - ((int32_t)c * d);
     return qi_sat16(qi_rshift_round(s, 14));
 }
 
@@ -254,15 +273,16 @@ int q_unit_q28(const int32_t *v, unsigned n, int32_t *out)
     /* bring the top bit of big to bit 29; out holds the scaled components
      * (no scratch array: the control tick's stack is counted in bytes) */
     unsigned lz = qi_clz32(big);
-    unsigned down = (lz < 2u) ? 2u - lz : 0u;
-    unsigned up = (lz > 2u) ? lz - 2u : 0u;
+    unsigned down = (lz < 2u) ? (2u - lz) : 0u;
+    unsigned up = (lz > 2u) ? (lz - 2u) : 0u;
     int32_t sum_q28 = 0;
     for (unsigned i = 0; i < n; i++) {
         uint32_t m = (v[i] < 0) ? (0u - (uint32_t)v[i]) : (uint32_t)v[i];
         if (down > 0u) {
             m = (m >> down) + ((m >> (down - 1u)) & 1u);
         }
-        int32_t c = (int32_t)(m << up); /* |c| <= 2^30 */
+        const uint32_t c_u = m << up;
+        int32_t c = (int32_t)c_u; /* |c| <= 2^30 */
         out[i] = (v[i] < 0) ? -c : c;
         sum_q28 += qi_mul32_fit(c, c, 32u); /* <= 3 * 2^28 */
     }
@@ -310,13 +330,16 @@ q16_t q14_norm2_q16(q14_t a, q14_t b)
 {
     /* a^2 + b^2 <= 2^31 in Q28; scaled by 4^k to Q(28+2k) while it fits, the
      * root is Q(14+k), shifted up to Q16. */
-    uint32_t s = (uint32_t)((int32_t)a * a) + (uint32_t)((int32_t)b * b);
+    const int32_t a2 = (int32_t)a * a;
+    const int32_t b2 = (int32_t)b * b;
+    uint32_t s = (uint32_t)a2 + (uint32_t)b2;
     unsigned k = 0u;
-    while (k < 2u && s < 0x40000000u) {
+    while ((k < 2u) && (s < 0x40000000u)) {
         s <<= 2;
         k++;
     }
-    return (q16_t)(q_isqrt32_round(s) << (2u - k));
+    const uint32_t r = q_isqrt32_round(s) << (2u - k);
+    return (q16_t)r;
 }
 
 static int normalize_q14(q14_t *v, unsigned n)

@@ -27,6 +27,8 @@ static inline int16_t qi_sat16(int32_t x)
  * first dropped bit, so it cannot overflow. */
 static inline int32_t qi_rshift_round(int32_t x, unsigned shift)
 {
+    /* arithmetic >> of a negative x by design: floor(x / 2^shift), see q14.h */
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
     return (x >> shift) + ((x >> (shift - 1u)) & 1);
 }
 
@@ -38,8 +40,9 @@ static inline unsigned qi_clz32(uint32_t x)
     return (unsigned)__builtin_clz(x);
 #else
     unsigned n = 0u;
-    while ((x & 0x80000000u) == 0u) {
-        x <<= 1;
+    uint32_t v = x;
+    while ((v & 0x80000000u) == 0u) {
+        v <<= 1;
         n++;
     }
     return n;
@@ -48,10 +51,10 @@ static inline unsigned qi_clz32(uint32_t x)
 
 static inline int32_t qi_add_sat32(int32_t a, int32_t b)
 {
-    if (b > 0 && a > INT32_MAX - b) {
+    if ((b > 0) && (a > (INT32_MAX - b))) {
         return INT32_MAX;
     }
-    if (b < 0 && a < INT32_MIN - b) {
+    if ((b < 0) && (a < (INT32_MIN - b))) {
         return INT32_MIN;
     }
     return a + b;
@@ -59,10 +62,10 @@ static inline int32_t qi_add_sat32(int32_t a, int32_t b)
 
 static inline int32_t qi_sub_sat32(int32_t a, int32_t b)
 {
-    if (b < 0 && a > INT32_MAX + b) {
+    if ((b < 0) && (a > (INT32_MAX + b))) {
         return INT32_MAX;
     }
-    if (b > 0 && a < INT32_MIN + b) {
+    if ((b > 0) && (a < (INT32_MIN + b))) {
         return INT32_MIN;
     }
     return a - b;
@@ -98,8 +101,13 @@ static inline u64pair_t u64_add(u64pair_t x, uint32_t hi, uint32_t lo)
 static inline u64pair_t u64_pow2(unsigned k)
 {
     u64pair_t r;
-    r.hi = (k >= 32u) ? (1u << (k - 32u)) : 0u;
-    r.lo = (k >= 32u) ? 0u : (1u << k);
+    if (k >= 32u) {
+        r.hi = (uint32_t)1u << (k - 32u);
+        r.lo = 0u;
+    } else {
+        r.hi = 0u;
+        r.lo = (uint32_t)1u << k;
+    }
     return r;
 }
 
@@ -121,10 +129,16 @@ static inline u64pair_t smul32_round_shift(int32_t a, int32_t b, unsigned shift)
     int32_t shi = (int32_t)p.hi; /* the conversion keeps the bits (gcc, clang, XC16) */
     if (shift < 32u) {
         r.lo = (p.lo >> shift) | (p.hi << (32u - shift));
-        r.hi = (uint32_t)(shi >> shift);
+        // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
+        const int32_t hi = shi >> shift;
+        r.hi = (uint32_t)hi;
     } else {
-        r.lo = (uint32_t)(shi >> (shift - 32u));
-        r.hi = (uint32_t)(shi >> 31);
+        // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+        const int32_t lo = shi >> (shift - 32u);
+        // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
+        const int32_t sign = shi >> 31;
+        r.lo = (uint32_t)lo;
+        r.hi = (uint32_t)sign;
     }
     return r;
 }
@@ -134,6 +148,7 @@ static inline int32_t qi_mul32_portable(int32_t a, int32_t b, unsigned shift)
     u64pair_t r = smul32_round_shift(a, b, shift);
     int32_t lo = (int32_t)r.lo;
     /* it fits iff the high half is the sign extension of the low half */
+    // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
     if ((int32_t)r.hi != (lo >> 31)) {
         return ((int32_t)r.hi < 0) ? INT32_MIN : INT32_MAX;
     }
@@ -145,7 +160,10 @@ static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
 {
     /* Cores with a 32x32->64 multiplier (SMULL, x86-64 IMUL): same bits as
      * the portable version below, proven by test_q14_wide. */
-    int64_t p = (int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u));
+    const unsigned half_shift = shift - 1u;
+    const uint64_t half = (uint64_t)1u << half_shift;
+    int64_t p = ((int64_t)a * (int64_t)b) + (int64_t)half;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
     p >>= shift;
     if (p > INT32_MAX) {
         return INT32_MAX;
@@ -170,28 +188,36 @@ static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
  */
 static inline int32_t qi_mul32x16_portable(int32_t a, int16_t b, unsigned shift)
 {
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
     int32_t a_hi = a >> 16;
-    int32_t a_lo = (int32_t)((uint32_t)a & 0xFFFFu);
+    const uint32_t a_lo_u = (uint32_t)a & 0xFFFFu;
+    int32_t a_lo = (int32_t)a_lo_u;
     int32_t p_lo = a_lo * b; /* |.| < 2^31: 65535 * 32768 = 2^31 - 2^15 */
     /* a*b = hi * 2^16 + lo exactly, 0 <= lo < 2^16 */
-    int32_t hi = a_hi * b + (p_lo >> 16);
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    int32_t hi = (a_hi * b) + (p_lo >> 16);
     uint32_t lo = (uint32_t)p_lo & 0xFFFFu;
     if (shift >= 16u) {
         if (shift == 16u) {
             return hi + (int32_t)(lo >> 15);
         }
         /* lo / 2^16 < 1 cannot carry past the rounding bit: drop it. */
-        return (hi + (int32_t)(1u << (shift - 17u))) >> (shift - 16u);
+        const uint32_t half = (uint32_t)1u << (shift - 17u);
+        // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+        return (hi + (int32_t)half) >> (shift - 16u);
     }
     unsigned up = 16u - shift;
+    // cppcheck-suppress misra-c2012-10.1 ; >> of a signed constant, as the test below
     if (hi > (INT32_MAX >> up)) {
         return INT32_MAX;
     }
+    // cppcheck-suppress [misra-c2012-10.1, shiftNegativeLHS] ; arithmetic >> by design
     if (hi < (INT32_MIN >> up)) {
         return INT32_MIN;
     }
-    int32_t r = (int32_t)((lo + (1uL << (shift - 1u))) >> shift);
-    return qi_add_sat32((int32_t)((uint32_t)hi << up), r);
+    const uint32_t r_u = (lo + ((uint32_t)1u << (shift - 1u))) >> shift;
+    const uint32_t hi_up = (uint32_t)hi << up; /* |hi| fits: tested above */
+    return qi_add_sat32((int32_t)hi_up, (int32_t)r_u);
 }
 
 #if Q_TARGET_HAS_MUL64
@@ -215,7 +241,12 @@ static inline int32_t qi_mul32x16(int32_t a, int16_t b, unsigned shift)
 #if Q_TARGET_HAS_MUL64
 static inline int32_t qi_mul32_fit(int32_t a, int32_t b, unsigned shift)
 {
-    return (int32_t)(((int64_t)a * (int64_t)b + ((int64_t)1 << (shift - 1u))) >> shift);
+    const unsigned half_shift = shift - 1u;
+    const uint64_t half = (uint64_t)1u << half_shift;
+    const int64_t p = ((int64_t)a * (int64_t)b) + (int64_t)half;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int64_t r = p >> shift;
+    return (int32_t)r; /* fits: the caller's proof */
 }
 static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 {
@@ -230,15 +261,26 @@ static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 {
     /* the two-partial-product form of qi_mul32x16_portable, without its
      * saturation test */
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
     int32_t a_hi = a >> 16;
-    int32_t p_lo = (int32_t)((uint32_t)a & 0xFFFFu) * b;
-    int32_t hi = a_hi * b + (p_lo >> 16);
+    const uint32_t a_lo_u = (uint32_t)a & 0xFFFFu;
+    int32_t p_lo = (int32_t)a_lo_u * b;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    int32_t hi = (a_hi * b) + (p_lo >> 16);
     uint32_t lo = (uint32_t)p_lo & 0xFFFFu;
-    if (shift >= 16u) {
-        return (shift == 16u) ? hi + (int32_t)(lo >> 15)
-                              : (hi + (int32_t)(1u << (shift - 17u))) >> (shift - 16u);
+    if (shift == 16u) {
+        return hi + (int32_t)(lo >> 15);
     }
-    return (int32_t)(((uint32_t)hi << (16u - shift)) + ((lo + (1u << (shift - 1u))) >> shift));
+    if (shift > 16u) {
+        const uint32_t half = (uint32_t)1u << (shift - 17u);
+        // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+        return (hi + (int32_t)half) >> (shift - 16u);
+    }
+    /* the int32 result is known to fit (the caller's proof): the sum of the
+     * bit patterns is its two's-complement representation */
+    const uint32_t r_u =
+        ((uint32_t)hi << (16u - shift)) + ((lo + ((uint32_t)1u << (shift - 1u))) >> shift);
+    return (int32_t)r_u;
 }
 #endif
 

@@ -139,7 +139,7 @@ typedef struct {
 } ht_input_t;
 
 /* Flags describing which branch of the law a step took. */
-enum {
+enum ht_step_flag {
     HT_F_AIRSPEED_FLOORED = 1u << 0,  /* airspeed < v_min: v_min used */
     HT_F_TILT_LIMITED = 1u << 1,      /* |ratio| clamped to max_tilt */
     HT_F_ROLL_BEYOND_90 = 1u << 2,    /* roll_dot <= 0: roll error = sign(cross) */

@@ -71,7 +71,7 @@ extern "C" {
 #define HT_NAV_ALT_MAX_M     100000L   /* +-100 km */
 #define HT_NAV_MAX_WAYPOINTS 1000u
 #define HT_NAV_VEL_MAX_CM_S  1000000L
-#define HT_Q28_ONE           (1L << 28)
+#define HT_Q28_ONE           268435456L /* 2^28 */
 
 typedef enum { HT_GUIDE_HEADING = 0, HT_GUIDE_L1 = 1 } ht_guide_law_t;
 
@@ -159,7 +159,7 @@ typedef struct {
                                               length), used below course_min */
 } ht_nav_input_t;
 
-enum {
+enum ht_nav_flag {
     HT_NAV_F_NO_DIRECTION = 1u << 0, /* no velocity and no heading: turn 0 */
     HT_NAV_F_BEYOND_90 = 1u << 1,    /* the error angle saturated */
     HT_NAV_F_NO_WAYPOINTS = 1u << 2, /* empty list: loitering at home */
