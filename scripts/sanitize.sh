@@ -9,7 +9,10 @@ scripts/setup_venv.sh
 cmake --workflow --preset sanitize
 
 board=build/sanitize/boards/sil/libhelical_sil_board.so
-if ! nm -D "$board" | grep -q __asan_init; then
+# (nm's whole output is read first: grep -q would close the pipe early and
+# pipefail would report nm's SIGPIPE as a failure)
+symbols="$(nm -D "$board")"
+if ! grep -q __asan_init <<<"$symbols"; then
   echo "sanitize: $board is not instrumented" >&2
   exit 1
 fi
