@@ -1,19 +1,30 @@
 #!/usr/bin/env bash
-# Static analysis of the library: cppcheck (with its MISRA C 2012 addon, rule
-# numbers only) and clang-tidy (the checks in /.clang-tidy) over SA_SOURCES and
-# SA_HEADERS. Prints every finding and exits non-zero if there is any.
+# Static analysis of the library and the boards: cppcheck (with its MISRA C
+# 2012 addon, rule numbers only) and clang-tidy (the checks in /.clang-tidy)
+# over SA_SOURCES, SA_XC16_SOURCES and SA_HEADERS. Prints every finding and
+# exits 0 if there is none, 1 if there is any, 2 if a tool could not run.
 # Policy, deviations and how to suppress: docs/static-analysis.md.
 #
-# To extend to boards/ later, add its files to SA_SOURCES / SA_HEADERS and its
-# include directories to SA_INCLUDES (and, for clang-tidy, make sure the files
-# are in a compile_commands.json: SA_TIDY_BUILD_DIR).
+# Scope: src/, include/ and the board code in boards/{common,stm32f4,dspic33,sil}
+# (not their tests/). Compile databases for clang-tidy: SA_TIDY_BUILD_DIR
+# (the host build: the library, boards/sil, fw_loop.c, hil_fw.c and the
+# drivers' host-testable files) and SA_TIDY_CROSS_BUILD_DIR (the stm32f4
+# firmware build: the cross-only files, run with --target=arm-none-eabi and
+# newlib's headers). SA_XC16_SOURCES (board_udb.c, XC16-only) are analysed on
+# their own with SA_XC16_DEFINES, the configuration XC16 builds them in.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c)"}
-SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h)"}
-SA_INCLUDES=${SA_INCLUDES:-"include src"}
+board_dirs="boards/common boards/stm32f4 boards/dspic33 boards/sil"
+SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
+    boards/dspic33/dspic33_oc_pwm.c)"}
+SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
+SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}
+SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h boards/common/*.h boards/stm32f4/*.h \
+    boards/dspic33/*.h boards/sil/*.h)"}
+SA_INCLUDES=${SA_INCLUDES:-"include src $board_dirs"}
 SA_TIDY_BUILD_DIR=${SA_TIDY_BUILD_DIR:-build/host}
+SA_TIDY_CROSS_BUILD_DIR=${SA_TIDY_CROSS_BUILD_DIR:-build/stm32f4}
 
 CPPCHECK=${CPPCHECK:-cppcheck}
 CLANG_TIDY=${CLANG_TIDY:-$(command -v clang-tidy-14 || command -v clang-tidy || echo clang-tidy-14)}
@@ -47,35 +58,116 @@ if [ ! -f "$SA_TIDY_BUILD_DIR/compile_commands.json" ]; then
     cmake --preset host >/dev/null
 fi
 
+cppcheck_common=(--std=c11 --language=c
+    --enable=warning,style,performance,portability,information
+    --suppress=missingIncludeSystem
+    --addon=misra --inline-suppr --suppressions-list="$SUPPRESSIONS"
+    --error-exitcode=0 -q "${inc_flags[@]}"
+    --template='{file}:{line}:{column}: {severity}: {message} [{id}]')
 echo "== $("$CPPCHECK" --version) (MISRA C 2012 addon) on: $SA_SOURCES $headers_tu"
 # --enable: every checker class except 'unusedFunction' (a library's public
 # functions are called by its users). 'information' reports, among others, a
 # suppression that no longer matches anything (unmatchedSuppression): stale
 # suppressions fail too. System headers are not analysed (cppcheck's own
 # library model of the standard headers is used): missingIncludeSystem is off.
-"$CPPCHECK" --std=c11 --language=c \
-    --enable=warning,style,performance,portability,information \
-    --suppress=missingIncludeSystem \
-    --addon=misra --inline-suppr --suppressions-list="$SUPPRESSIONS" \
-    --error-exitcode=0 -q "${inc_flags[@]}" \
-    --template='{file}:{line}:{column}: {severity}: {message} [{id}]' \
+"$CPPCHECK" "${cppcheck_common[@]}" \
     $SA_SOURCES "$headers_tu" 2>"$out/cppcheck.txt" || failed="$failed cppcheck"
-cppcheck_n=$(grep -E '^[^ ]+:[0-9]+:[0-9]+: ' "$out/cppcheck.txt" | grep -vc ': note: ' || true)
+# The XC16-only sources, on their own and in XC16's configuration (-D: only
+# that one; without it they are an #error). A separate run because such a
+# file implements board.h like board_stm32f4.c does: the two are never linked
+# into one program. The suppressions-file entries this run does not exercise
+# are reported unmatched (at 'nofile:0' or, for a path-scoped entry, at
+# '<pattern>:-1'); the main run above checks those for staleness, so only they
+# are dropped here (a stale inline suppression in an XC16 file is reported at
+# its file and line, and is kept).
+if [ -n "$SA_XC16_SOURCES" ]; then
+    echo "== cppcheck (MISRA C 2012 addon), XC16 configuration $SA_XC16_DEFINES on: $SA_XC16_SOURCES"
+    if "$CPPCHECK" "${cppcheck_common[@]}" $SA_XC16_DEFINES $SA_XC16_SOURCES \
+        2>"$out/cppcheck-xc16.raw"; then
+        grep -Ev '^(nofile:0|[^ ]+:-1):0: information: Unmatched suppression: ' \
+            "$out/cppcheck-xc16.raw" \
+            >>"$out/cppcheck.txt" || true
+    else
+        failed="$failed cppcheck(xc16)"
+    fi
+fi
+# (line -1: an unmatched path-scoped entry of the suppressions file)
+cppcheck_n=$(grep -E '^[^ ]+:-?[0-9]+:[0-9]+: ' "$out/cppcheck.txt" | grep -vc ': note: ' || true)
 cat "$out/cppcheck.txt"
 
-# clang-tidy: the sources with their real flags from the compile database,
-# once as built (the host's fast paths) and once with -DHT_PORTABLE_ONLY=1
-# (the portable paths every core without them takes); the header TU with the
+# clang-tidy: each source with its real flags from a compile database, once
+# as built (the host's fast paths) and once with -DHT_PORTABLE_ONLY=1 (the
+# portable paths every core without them takes); the header TU with the
 # project's flags.
+#  - sources in the host database ($SA_TIDY_BUILD_DIR): as the host builds them;
+#  - sources only in the firmware database ($SA_TIDY_CROSS_BUILD_DIR: startup,
+#    board files, fw_main, hil_main, the placeholders): as arm-none-eabi-gcc
+#    builds them for the Cortex-M4, with clang told the target and newlib's
+#    include directory; the database is copied without the gcc-only
+#    -fcallgraph-info/-fstack-usage (reports for the stack check) that clang
+#    does not accept;
+#  - SA_XC16_SOURCES: explicit flags, C11 with SA_XC16_DEFINES.
+in_db() { grep -qF "\"file\": \"$PWD/$2\"" "$1/compile_commands.json"; }
+host_srcs=()
+cross_srcs=()
+for f in $SA_SOURCES; do
+    if in_db "$SA_TIDY_BUILD_DIR" "$f"; then
+        host_srcs+=("$f")
+    else
+        cross_srcs+=("$f")
+    fi
+done
+cross_args=()
+if [ ${#cross_srcs[@]} -ne 0 ]; then
+    if [ ! -f "$SA_TIDY_CROSS_BUILD_DIR/compile_commands.json" ]; then
+        echo "== no $SA_TIDY_CROSS_BUILD_DIR/compile_commands.json: cmake --preset stm32f4"
+        cmake --preset stm32f4 >/dev/null || failed="$failed cmake(stm32f4)"
+    fi
+    cross_db="$out/cross-db"
+    mkdir -p "$cross_db"
+    if [ -f "$SA_TIDY_CROSS_BUILD_DIR/compile_commands.json" ]; then
+        sed -e 's/ -fcallgraph-info=[a-z,]*//g; s/ -fstack-usage//g' \
+            "$SA_TIDY_CROSS_BUILD_DIR/compile_commands.json" >"$cross_db/compile_commands.json"
+    else
+        : >"$cross_db/compile_commands.json"
+    fi
+    newlib_inc=$(echo | arm-none-eabi-gcc -xc -E -v - 2>&1 |
+        sed -n 's/^ *\(.*arm-none-eabi\/include\)$/\1/p' | head -n 1 || true)
+    if [ -z "$newlib_inc" ]; then
+        failed="$failed arm-none-eabi-gcc(newlib include dir)"
+    fi
+    for f in "${cross_srcs[@]}"; do
+        if ! in_db "$cross_db" "$f"; then
+            echo "static analysis: $f is in neither compile database" >&2
+            failed="$failed clang-tidy($f)"
+        fi
+    done
+    cross_args=(-p "$cross_db" --extra-arg=--target=arm-none-eabi "--extra-arg=-isystem$newlib_inc")
+fi
+
 header_re="^$PWD/($(echo $SA_INCLUDES | sed 's/ /|/g'))/"
-echo "== $("$CLANG_TIDY" --version | grep -i version | head -n 1) on: $SA_SOURCES $headers_tu"
+echo "== $("$CLANG_TIDY" --version | grep -i version | head -n 1) on: $SA_SOURCES $SA_XC16_SOURCES $headers_tu"
 : >"$out/clang-tidy.txt"
 : >"$out/clang-tidy.err"
 for extra in "" "-DHT_PORTABLE_ONLY=1"; do
-    printf '%s\n' $SA_SOURCES | xargs -P "$(nproc)" -n 1 \
-        "$CLANG_TIDY" --quiet -p "$SA_TIDY_BUILD_DIR" --header-filter="$header_re" \
-        ${extra:+--extra-arg=$extra} >>"$out/clang-tidy.txt" 2>>"$out/clang-tidy.err" ||
-        failed="$failed clang-tidy${extra:+($extra)}"
+    if [ ${#host_srcs[@]} -ne 0 ]; then
+        printf '%s\n' "${host_srcs[@]}" | xargs -P "$(nproc)" -n 1 \
+            "$CLANG_TIDY" --quiet -p "$SA_TIDY_BUILD_DIR" --header-filter="$header_re" \
+            ${extra:+--extra-arg=$extra} >>"$out/clang-tidy.txt" 2>>"$out/clang-tidy.err" ||
+            failed="$failed clang-tidy${extra:+($extra)}"
+    fi
+    if [ ${#cross_srcs[@]} -ne 0 ]; then
+        printf '%s\n' "${cross_srcs[@]}" | xargs -P "$(nproc)" -n 1 \
+            "$CLANG_TIDY" --quiet "${cross_args[@]}" --header-filter="$header_re" \
+            ${extra:+--extra-arg=$extra} >>"$out/clang-tidy.txt" 2>>"$out/clang-tidy.err" ||
+            failed="$failed clang-tidy(arm-none-eabi${extra:+ $extra})"
+    fi
+done
+for f in $SA_XC16_SOURCES; do
+    # shellcheck disable=SC2086 # SA_XC16_DEFINES is a list of flags
+    "$CLANG_TIDY" --quiet --header-filter="$header_re" "$f" -- -std=c11 $SA_XC16_DEFINES \
+        "${inc_flags[@]}" >>"$out/clang-tidy.txt" 2>>"$out/clang-tidy.err" ||
+        failed="$failed clang-tidy($f)"
 done
 "$CLANG_TIDY" --quiet --header-filter="$header_re" "$headers_tu" -- -std=c11 "${inc_flags[@]}" \
     >>"$out/clang-tidy.txt" 2>>"$out/clang-tidy.err" || failed="$failed clang-tidy(headers)"

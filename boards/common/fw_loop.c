@@ -3,6 +3,7 @@
  */
 #include "fw_loop.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 void fw_config_default(fw_config_t *cfg)
@@ -31,7 +32,9 @@ void fw_config_default(fw_config_t *cfg)
     cfg->manual_below_us = 1300u;
     cfg->rc_timeout_ticks = 20u;    /* 0.5 s at 40 Hz */
     cfg->sensor_timeout_ticks = 4u; /* 0.1 s at 40 Hz */
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     cfg->max_turn_rate_rad_s = Q11_FROM_REAL(0.5);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
     cfg->max_pitch_ratio = Q16_FROM_REAL(0.3);
     cfg->failsafe_throttle = 0;
 }
@@ -141,11 +144,12 @@ void fw_tick(fw_state_t *fw, uint16_t late_ticks)
     const uint8_t rc_n = board_rc_count();
     const uint8_t rc_count = (rc_n > BOARD_MAX_RC_INPUTS) ? (uint8_t)BOARD_MAX_RC_INPUTS : rc_n;
     os_command_t *sticks = &fw->sticks_in;
-    const int rc_fresh = board_rc_read_us(rc_us, rc_count) == BOARD_OK &&
-                         os_rc_command(&cfg->rc, rc_us, rc_count, sticks) == OS_OK &&
-                         cfg->mode_input < rc_count &&
-                         rc_us[cfg->mode_input] >= OS_RC_VALID_MIN_US &&
-                         rc_us[cfg->mode_input] <= OS_RC_VALID_MAX_US;
+    const bool rc_fresh = board_rc_read_us(rc_us, rc_count) == BOARD_OK &&
+                          os_rc_command(&cfg->rc, rc_us, rc_count, sticks) == OS_OK &&
+                          cfg->mode_input < rc_count &&
+                          rc_us[cfg->mode_input] >= OS_RC_VALID_MIN_US &&
+                          rc_us[cfg->mode_input] <= OS_RC_VALID_MAX_US;
+    // cppcheck-suppress knownConditionTrueFalse ; FP: board_rc_read_us of rc_none.c, see D-FP-RC
     fw->rc_age_ticks = rc_fresh ? 0u : age(fw->rc_age_ticks);
 
     if (board_sensors_read(&fw->sensors_in) == BOARD_OK) {
@@ -172,6 +176,8 @@ void fw_tick(fw_state_t *fw, uint16_t late_ticks)
         set_failsafe(fw, BOARD_FS_NONE);
         /* A frame missed within the timeout keeps the last sticks and mode:
          * receivers and this tick run at different rates. */
+        // cppcheck-suppress knownConditionTrueFalse ; FP: board_rc_read_us of rc_none.c, see
+        // D-FP-RC
         if (rc_fresh) {
             fw->sticks = *sticks;
             fw->pilot_mode = (rc_us[cfg->mode_input] < cfg->manual_below_us)

@@ -7,11 +7,12 @@
 
 #include "fw_loop.h"
 
-static fw_config_t config;
-static fw_state_t state;
-
+// cppcheck-suppress misra-c2012-8.6 ; FP: one main per image, hil_main.c is another program
 int main(void)
 {
+    /* static: the firmware state is not on the stack (same storage as at file scope) */
+    static fw_config_t config;
+    static fw_state_t state;
     const board_config_t board = BOARD_CONFIG_DEFAULT;
     fw_config_default(&config);
     if (board_init(&board) != BOARD_OK) {

@@ -41,7 +41,7 @@ static void send(hil_fw_t *h, uint8_t id, uint8_t len)
 
 void hil_fw_init(hil_fw_t *h)
 {
-    memset(h, 0, sizeof *h);
+    (void)memset(h, 0, sizeof *h);
     for (unsigned i = 0; i < HIL_ID_HOST_COUNT; ++i) {
         h->rx_len[i] = NO_SUCH_LENGTH;
     }
@@ -113,7 +113,7 @@ static void cfg_law(hil_fw_t *h, const uint8_t *p)
     l->v_ref_cm_s = hil_get_i32(&p[36]);
     l->v_min_cm_s = hil_get_i32(&p[40]);
     l->max_tilt = hil_get_i32(&p[44]);
-    l->schedule = (uint8_t)(p[48] != 0u);
+    l->schedule = (p[48] != 0u) ? 1u : 0u;
     h->have |= HAVE_LAW;
 }
 
@@ -159,7 +159,7 @@ static void cfg_out(hil_fw_t *h, const uint8_t *p)
         const uint8_t *r = &p[2u + 14u * i];
         os_channel_t *ch = &h->out_staged.ch[first + i];
         ch->function = r[0];
-        ch->reversed = (uint8_t)(r[1] != 0u);
+        ch->reversed = (r[1] != 0u) ? 1u : 0u;
         ch->centre_us = hil_get_u16(&r[2]);
         ch->trim_us = hil_get_i16(&r[4]);
         ch->travel_us = hil_get_u16(&r[6]);
@@ -225,19 +225,19 @@ static void start(hil_fw_t *h)
 
 void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
 {
-    memset(o, 0, sizeof *o);
-    if (!h->started) {
+    (void)memset(o, 0, sizeof *o);
+    if (h->started == 0u) {
         return;
     }
     /* outer loops; the altitude hold's integrator follows the measured
      * orientation (holds.h) */
     q16_t pitch = in->pitch_ratio;
-    if (in->flags & HIL_SF_ALTITUDE_HOLD) {
+    if ((in->flags & HIL_SF_ALTITUDE_HOLD) != 0u) {
         pitch = ht_alt_hold_step(&h->alt, &h->alt_state, in->altitude_cmd_cm, in->altitude_cm,
-                                 in->climb_cm_s, (uint8_t)(in->imu.down_q14[2] < 0));
+                                 in->climb_cm_s, (in->imu.down_q14[2] < 0) ? 1u : 0u);
     }
     q14_t throttle = in->throttle;
-    if (in->flags & HIL_SF_SPEED_HOLD) {
+    if ((in->flags & HIL_SF_SPEED_HOLD) != 0u) {
         throttle = ht_speed_hold_step(&h->spd, &h->spd_state, in->airspeed_cmd_cm_s,
                                       in->imu.airspeed_cm_s, pitch);
     }
@@ -252,8 +252,8 @@ void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
     li->gyro_rad_s[0] = in->imu.gyro_q11_rad_s[0];
     li->gyro_rad_s[1] = in->imu.gyro_q11_rad_s[1];
     li->gyro_rad_s[2] = in->imu.gyro_q11_rad_s[2];
-    li->inverted = (uint8_t)((in->flags & HIL_SF_INVERTED) != 0u);
-    const unsigned mode = (in->flags & HIL_SF_TILT_CROSS) ? 1u : 0u;
+    li->inverted = ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u;
+    const uint8_t mode = ((in->flags & HIL_SF_TILT_CROSS) != 0u) ? 1u : 0u;
     ht_step(&h->law[mode], li, &o->law);
     /* the output stage: mixing, trims, travel, end points */
     h->cmd.aileron = o->law.aileron;
@@ -328,7 +328,7 @@ static void on_sensors(hil_fw_t *h)
         nak(h, (uint8_t)HIL_ID_SENSORS, (uint8_t)HIL_NAK_BAD_FIELD);
         return;
     }
-    if (!h->started) {
+    if (h->started == 0u) {
         nak(h, (uint8_t)HIL_ID_SENSORS, (uint8_t)HIL_NAK_NOT_STARTED);
         return;
     }

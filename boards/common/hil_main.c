@@ -8,10 +8,10 @@
 
 #include "hil_fw.h"
 
-static hil_fw_t hil;
-
+// cppcheck-suppress misra-c2012-8.6 ; FP: one main per image, fw_main.c is another program
 int main(void)
 {
+    static hil_fw_t hil; /* static: not on the stack (same storage as at file scope) */
     const board_config_t board = BOARD_CONFIG_DEFAULT;
     if (board_init(&board) != BOARD_OK) {
         board_failsafe(BOARD_FS_CONFIG);
@@ -20,7 +20,7 @@ int main(void)
         }
     }
     hil_fw_init(&hil);
-    if (!hil_link_init()) {
+    if (hil_link_init() == 0) {
         for (;;) {
             /* no link: nothing to fly; outputs keep "no pulses" */
         }
@@ -30,7 +30,7 @@ int main(void)
     hil_fw_send_ready(&hil);
     for (;;) {
         uint8_t byte = 0u;
-        if (hil_link_poll(&byte)) {
+        if (hil_link_poll(&byte) != 0) {
             hil_fw_on_byte(&hil, byte);
         }
     }

@@ -6,8 +6,6 @@
 
 #include <stddef.h>
 
-static const uint16_t prescales[4] = {1u, 8u, 64u, 256u}; /* index = TCKPS */
-
 static volatile uint16_t *timer_count(const dspic_pwm_t *pwm)
 {
     return (pwm->timer == 2u) ? &pwm->tmr->TMR2 : &pwm->tmr->TMR3;
@@ -17,6 +15,7 @@ dspic_pwm_status_t dspic_pwm_init(dspic_pwm_t *pwm, dspic_tmr23_t *tmr, dspic_oc
                                   uint8_t timer, uint32_t fcy_hz, uint16_t frame_hz,
                                   uint16_t start_us)
 {
+    static const uint16_t prescales[4] = {1u, 8u, 64u, 256u}; /* index = TCKPS */
     if (pwm == NULL || tmr == NULL || oc == NULL) {
         return DSPIC_PWM_ERR_NULL;
     }
@@ -63,8 +62,8 @@ dspic_pwm_status_t dspic_pwm_init(dspic_pwm_t *pwm, dspic_tmr23_t *tmr, dspic_oc
         tmr->TMR3 = 0u;
         tmr->PR3 = (uint16_t)(counts - 1u);
     }
-    const uint16_t occon =
-        (uint16_t)(DSPIC_OCCON_OCM_PWM | (timer == 3u ? DSPIC_OCCON_OCTSEL : 0u));
+    const uint16_t octsel = (timer == 3u) ? (uint16_t)DSPIC_OCCON_OCTSEL : 0u;
+    const uint16_t occon = (uint16_t)(DSPIC_OCCON_OCM_PWM | octsel);
     for (uint8_t i = 0; i < DSPIC_OC_COUNT; ++i) {
         oc[i].OCCON = DSPIC_OCCON_OCM_OFF; /* mode changes go through "off" */
         oc[i].OCR = start;                 /* the first frame's duty */

@@ -26,15 +26,15 @@ typedef struct {
     volatile uint16_t T3CON;   /* 0x0112 */
 } dspic_tmr23_t;
 
-_Static_assert(offsetof(dspic_tmr23_t, PR2) == 0x010C - 0x0106, "PR2 offset");
-_Static_assert(offsetof(dspic_tmr23_t, T2CON) == 0x0110 - 0x0106, "T2CON offset");
-_Static_assert(offsetof(dspic_tmr23_t, T3CON) == 0x0112 - 0x0106, "T3CON offset");
+_Static_assert((size_t)offsetof(dspic_tmr23_t, PR2) == 0x010Cu - 0x0106u, "PR2 offset");
+_Static_assert((size_t)offsetof(dspic_tmr23_t, T2CON) == 0x0110u - 0x0106u, "T2CON offset");
+_Static_assert((size_t)offsetof(dspic_tmr23_t, T3CON) == 0x0112u - 0x0106u, "T3CON offset");
 
 #define DSPIC_TMR23_ADDR 0x0106u
 
 /* TxCON */
-#define DSPIC_TCON_TON         (1u << 15) /* timer on */
-#define DSPIC_TCON_TSIDL       (1u << 13)
+#define DSPIC_TCON_TON         0x8000u /* bit 15: timer on */
+#define DSPIC_TCON_TSIDL       0x2000u /* bit 13 */
 #define DSPIC_TCON_TGATE       (1u << 6)
 #define DSPIC_TCON_TCKPS_SHIFT 4u        /* TCKPS<1:0>: 00 1:1, 01 1:8, 10 1:64, 11 1:256 */
 #define DSPIC_TCON_T32         (1u << 3) /* T2CON only: Timer2/3 as one 32-bit timer */
@@ -54,7 +54,7 @@ _Static_assert(sizeof(dspic_oc_t) == 6u, "OC stride");
 #define DSPIC_OC_COUNT 8u
 
 /* OCxCON */
-#define DSPIC_OCCON_OCSIDL  (1u << 13)
+#define DSPIC_OCCON_OCSIDL  0x2000u   /* bit 13 */
 #define DSPIC_OCCON_OCFLT   (1u << 4) /* PWM fault occurred (read only) */
 #define DSPIC_OCCON_OCTSEL  (1u << 3) /* 0 = Timer2, 1 = Timer3 */
 #define DSPIC_OCCON_OCM_PWM 6u        /* OCM<2:0> = 110: PWM, fault pin disabled */

@@ -4,6 +4,8 @@
 #include "sil_board.h"
 
 #include <math.h>
+// cppcheck-suppress misra-c2012-21.6 ; D-SIL-HOST: host-only SIL board, snprintf names a refused
+// field for the Python caller
 #include <stdio.h>
 #include <string.h>
 
@@ -75,7 +77,7 @@ static double from_pulse(const os_channel_t *ch, uint16_t pulse_us)
 
 static int fail(char *err, size_t err_len, const char *field)
 {
-    if (err != NULL && err_len > 0) {
+    if (err != NULL && err_len > 0u) {
         (void)snprintf(err, err_len, "%s", field);
     }
     return 1;
@@ -176,14 +178,14 @@ static int modes_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t
     p.fbw.pitch_max = to_q16(cfg->fbw_pitch_max);
     p.fbw.deadband_us = (uint16_t)to_fixed(cfg->fbw_deadband_us, 1.0, 0, UINT16_MAX);
     p.nav.law = (uint8_t)(cfg->nav_law != 0 ? HT_GUIDE_L1 : HT_GUIDE_HEADING);
-    p.nav.loop = (uint8_t)(cfg->nav_loop != 0);
+    p.nav.loop = (cfg->nav_loop != 0) ? 1u : 0u;
     p.nav.turn_rate_max_deg_s =
         (int16_t)to_fixed(cfg->nav_turn_rate_max_deg_s, 1.0, INT16_MIN, INT16_MAX);
     p.nav.l1_m = (uint16_t)to_fixed(cfg->nav_l1_m, 1.0, 0, UINT16_MAX);
     p.nav.arrival_radius_m = (uint16_t)to_fixed(cfg->nav_arrival_radius_m, 1.0, 0, UINT16_MAX);
     p.nav.loiter_radius_m = (uint16_t)to_fixed(cfg->nav_loiter_radius_m, 1.0, 0, UINT16_MAX);
     p.nav.home_alt_m = (int32_t)llround(cfg->nav_home_alt_m);
-    p.aoa.enabled = (uint8_t)(cfg->aoa_enabled != 0);
+    p.aoa.enabled = (cfg->aoa_enabled != 0) ? 1u : 0u;
     p.aoa.v_ref_cm_s = to_cm16(cfg->aoa_v_ref_m_s);
     p.aoa.v_enable_cm_s = to_cm16(cfg->aoa_v_enable_m_s);
     p.aoa.load_max = to_q16(cfg->aoa_load_max);
@@ -197,7 +199,7 @@ static int modes_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t
     p.aoa.trim_inverted_slope = to_q14(cfg->aoa_trim_inverted_slope);
     p.alt = b->alt;
     p.speed = b->spd;
-    b->modes_pitch_mode = (uint8_t)(cfg->modes_pitch_mode != 0);
+    b->modes_pitch_mode = (cfg->modes_pitch_mode != 0) ? 1u : 0u;
     ht_modes_bad_t bad;
     if (ht_modes_init(&b->modes, &p, &b->law[b->modes_pitch_mode], b->waypoints,
                       (uint16_t)cfg->waypoint_count, &bad) != 0) {
@@ -217,7 +219,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (b == NULL || cfg == NULL) {
         return fail(err, err_len, "(null)");
     }
-    memset(b, 0, sizeof(*b));
+    (void)memset(b, 0, sizeof(*b));
 
     /* gains: the core checks [0, 64]; refuse values that would not convert */
     const double gains[9] = {cfg->kp_aileron,  cfg->kp_elevator,  cfg->kp_rudder,
@@ -255,7 +257,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     p.kd_rudder = to_q16(cfg->kd_rudder);
     p.v_ref_cm_s = to_cm32(cfg->v_ref_m_s);
     p.v_min_cm_s = to_cm32(cfg->v_min_m_s);
-    p.schedule = (uint8_t)(cfg->schedule != 0);
+    p.schedule = (cfg->schedule != 0) ? 1u : 0u;
     p.max_tilt = to_q16(cfg->max_tilt);
     for (int mode = 0; mode < 2; ++mode) {
         p.pitch_mode = (uint8_t)mode;
@@ -324,7 +326,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
         }
     }
     b->ready = 1;
-    if (err != NULL && err_len > 0) {
+    if (err != NULL && err_len > 0u) {
         err[0] = '\0';
     }
     return 0;
@@ -355,7 +357,7 @@ static void modes_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_c
                        sil_fw_output_t *o)
 {
     ht_modes_input_t in;
-    memset(&in, 0, sizeof in);
+    (void)memset(&in, 0, sizeof in);
     for (int i = 0; i < SIL_RC_COUNT; ++i) {
         in.rc_us[i] = c->rc_us[i];
     }
@@ -388,23 +390,23 @@ static void modes_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_c
 void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command_t *c,
                  sil_fw_output_t *o)
 {
-    memset(o, 0, sizeof(*o));
+    (void)memset(o, 0, sizeof(*o));
     if (b == NULL || s == NULL || c == NULL || !b->ready) {
         return;
     }
-    if (b->modes_enabled) {
+    if (b->modes_enabled != 0u) {
         modes_step(b, s, c, o);
         return;
     }
     /* outer loops; the altitude hold's integrator follows the measured
      * orientation (holds.h) */
     q16_t pitch = c->pitch_ratio;
-    if (c->altitude_hold) {
+    if (c->altitude_hold != 0u) {
         pitch = ht_alt_hold_step(&b->alt, &b->alt_state, c->altitude_cm, s->altitude_cm,
-                                 s->climb_cm_s, (uint8_t)(s->imu.down_q14[2] < 0));
+                                 s->climb_cm_s, (s->imu.down_q14[2] < 0) ? 1u : 0u);
     }
     q14_t throttle = c->throttle;
-    if (c->speed_hold) {
+    if (c->speed_hold != 0u) {
         throttle = ht_speed_hold_step(&b->spd, &b->spd_state, c->airspeed_cm_s,
                                       s->imu.airspeed_cm_s, pitch);
     }
@@ -420,7 +422,7 @@ void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command
     in.gyro_rad_s[1] = s->imu.gyro_q11_rad_s[1];
     in.gyro_rad_s[2] = s->imu.gyro_q11_rad_s[2];
     in.inverted = c->inverted;
-    const unsigned mode = (c->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
+    const uint8_t mode = (c->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
     ht_step(&b->law[mode], &in, &o->law);
     /* the output stage: mixing, trims, travel, end points */
     os_command_t cmd;
@@ -441,7 +443,7 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     if (a == NULL) {
         return;
     }
-    memset(a, 0, sizeof(*a));
+    (void)memset(a, 0, sizeof(*a));
     if (b == NULL || s == NULL || c == NULL) {
         return;
     }
@@ -468,14 +470,14 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     fc.altitude_cm = to_cm32(c->altitude_m);
     fc.airspeed_cm_s = to_cm16(c->airspeed_m_s);
     fc.throttle = to_q14(c->throttle < 0.0 ? 0.0 : (c->throttle > 1.0 ? 1.0 : c->throttle));
-    fc.altitude_hold = (uint8_t)(c->altitude_hold != 0);
-    fc.speed_hold = (uint8_t)(c->speed_hold != 0);
-    fc.inverted = (uint8_t)(c->inverted != 0);
-    fc.pitch_mode = (uint8_t)(c->pitch_mode != 0);
+    fc.altitude_hold = (c->altitude_hold != 0) ? 1u : 0u;
+    fc.speed_hold = (c->speed_hold != 0) ? 1u : 0u;
+    fc.inverted = (c->inverted != 0) ? 1u : 0u;
+    fc.pitch_mode = (c->pitch_mode != 0) ? 1u : 0u;
     for (int i = 0; i < SIL_RC_COUNT; ++i) {
         fc.rc_us[i] = (uint16_t)to_fixed(c->rc_us[i], 1.0, 0, UINT16_MAX);
     }
-    fc.rc_fresh = (uint8_t)(c->rc_fresh != 0);
+    fc.rc_fresh = (c->rc_fresh != 0) ? 1u : 0u;
 
     sil_fw_output_t o;
     sil_fw_step(b, &fs, &fc, &o);
@@ -492,7 +494,7 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     a->roll_error = from_q14(o.law.roll_error);
     a->pitch_error = from_q14(o.law.pitch_error);
     a->flags = (int32_t)o.law.flags | (o.servo_clamped ? 0x100 : 0);
-    if (b->modes_enabled) {
+    if (b->modes_enabled != 0u) {
         const ht_modes_output_t *m = &o.modes;
         a->mode = m->mode;
         a->selected_mode = m->selected_mode;

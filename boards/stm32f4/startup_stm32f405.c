@@ -5,8 +5,12 @@
  */
 #include <stdint.h>
 
-/* Linker-script symbols (stm32f405.ld). */
+/* Linker-script symbols (stm32f405.ld): addresses without a size, under the
+ * names the linker script gives them (docs/static-analysis.md, D-LINKER). */
+// NOLINTBEGIN(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp): D-LINKER, stm32f405.ld
+// cppcheck-suppress misra-c2012-8.11 ; D-LINKER: linker symbols have no C size
 extern uint32_t _sidata[], _sdata[], _edata[], _sbss[], _ebss[], _estack[];
+// NOLINTEND(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 
 int main(void);
 void Reset_Handler(void);
@@ -31,12 +35,18 @@ void USART1_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 
 typedef void (*vector_t)(void);
 
+/* Four interrupt lines that trap in Default_Handler. */
+#define DEFAULT_X4 Default_Handler, Default_Handler, Default_Handler, Default_Handler
+
 typedef struct {
     uint32_t *initial_sp;
     vector_t system[15];
     vector_t irq[STM32F405_IRQ_COUNT];
 } vector_table_t;
 
+/* Read by the core at reset and on each exception, kept by the linker script
+ * (KEEP(*(.isr_vector))); declared first for MISRA 8.4. */
+extern const vector_table_t vector_table;
 __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table = {
     _estack,
     {
@@ -59,45 +69,55 @@ __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table 
     /* The flight image enables no peripheral interrupt; the HIL image enables
      * USART1's (position 37). Any other stops in Default_Handler where a
      * debugger can see it. */
+    /* one entry (or four) per line, so the positions can be counted */
+    // clang-format off
     {
-#define D4 Default_Handler, Default_Handler, Default_Handler, Default_Handler
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
         Default_Handler,   /* 36 */
         USART1_IRQHandler, /* 37 */
         Default_Handler,
         Default_Handler,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
-        D4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
+        DEFAULT_X4,
         Default_Handler,
-        Default_Handler
-#undef D4
+        Default_Handler,
     },
+    // clang-format on
 };
 
 void Reset_Handler(void)
 {
     const uint32_t *src = _sidata;
-    for (uint32_t *dst = _sdata; dst < _edata;) {
-        *dst++ = *src++;
+    uint32_t *dst = _sdata;
+    /* The linker symbols delimit one region each (.data, .bss); C sees them as
+     * separate objects (docs/static-analysis.md, D-LINKER). */
+    // cppcheck-suppress comparePointers ; D-LINKER: _sdata.._edata is one region
+    while (dst < _edata) {
+        *dst = *src;
+        ++dst;
+        ++src;
     }
-    for (uint32_t *dst = _sbss; dst < _ebss;) {
-        *dst++ = 0u;
+    dst = _sbss;
+    // cppcheck-suppress comparePointers ; D-LINKER: _sbss.._ebss is one region
+    while (dst < _ebss) {
+        *dst = 0u;
+        ++dst;
     }
     (void)main();
     for (;;) {

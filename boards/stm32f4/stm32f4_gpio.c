@@ -11,11 +11,13 @@ void stm32_gpio_set_af(stm32_gpio_t *port, uint8_t pin, uint8_t af)
         return;
     }
     /* AFR first, so the pin never drives a wrong function once in AF mode. */
-    const unsigned reg = pin / 8u;
-    const unsigned af_shift = 4u * (pin % 8u);
-    port->AFR[reg] = (port->AFR[reg] & ~(0xFu << af_shift)) | ((uint32_t)af << af_shift);
-    const unsigned mode_shift = 2u * pin;
-    port->MODER = (port->MODER & ~(3u << mode_shift)) | (GPIO_MODER_AF << mode_shift);
+    const uint32_t pin32 = pin;
+    const uint32_t reg = pin32 / 8u;
+    const uint32_t af_shift = 4u * (pin32 % 8u);
+    port->AFR[reg] = (port->AFR[reg] & ~((uint32_t)0xFu << af_shift)) | ((uint32_t)af << af_shift);
+    const uint32_t mode_shift = 2u * pin32;
+    port->MODER =
+        (port->MODER & ~((uint32_t)3u << mode_shift)) | ((uint32_t)GPIO_MODER_AF << mode_shift);
 }
 
 void stm32_rcc_enable_servo_clocks(stm32_rcc_t *rcc)

@@ -44,7 +44,8 @@ stm32_pwm_status_t stm32_pwm_init(stm32_pwm_t *pwm, stm32_tim_t *tim_a, stm32_ti
         return STM32_PWM_ERR_RANGE;
     }
     const uint32_t psc = timer_clk_hz / STM32_PWM_COUNT_HZ - 1u;
-    const uint32_t period = (STM32_PWM_COUNT_HZ + frame_hz / 2u) / frame_hz;
+    const uint32_t frame = frame_hz;
+    const uint32_t period = (STM32_PWM_COUNT_HZ + frame / 2u) / frame;
     pwm->tim[0] = tim_a;
     pwm->tim[1] = tim_b;
     pwm->period_us = (uint16_t)period;

@@ -36,14 +36,14 @@ typedef struct {
     volatile uint32_t OR;        /* 0x50 option (TIM2, TIM5 only) */
 } stm32_tim_t;
 
-_Static_assert(offsetof(stm32_tim_t, EGR) == 0x14, "TIM EGR offset");
-_Static_assert(offsetof(stm32_tim_t, CCMR1) == 0x18, "TIM CCMR1 offset");
-_Static_assert(offsetof(stm32_tim_t, CCER) == 0x20, "TIM CCER offset");
-_Static_assert(offsetof(stm32_tim_t, PSC) == 0x28, "TIM PSC offset");
-_Static_assert(offsetof(stm32_tim_t, ARR) == 0x2C, "TIM ARR offset");
-_Static_assert(offsetof(stm32_tim_t, CCR) == 0x34, "TIM CCR1 offset");
-_Static_assert(offsetof(stm32_tim_t, DCR) == 0x48, "TIM DCR offset");
-_Static_assert(offsetof(stm32_tim_t, OR) == 0x50, "TIM OR offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, EGR) == 0x14u, "TIM EGR offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, CCMR1) == 0x18u, "TIM CCMR1 offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, CCER) == 0x20u, "TIM CCER offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, PSC) == 0x28u, "TIM PSC offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, ARR) == 0x2Cu, "TIM ARR offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, CCR) == 0x34u, "TIM CCR1 offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, DCR) == 0x48u, "TIM DCR offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, OR) == 0x50u, "TIM OR offset");
 
 #define STM32_TIM3_BASE 0x40000400u /* APB1 */
 #define STM32_TIM4_BASE 0x40000800u
@@ -60,7 +60,7 @@ _Static_assert(offsetof(stm32_tim_t, OR) == 0x50, "TIM OR offset");
 #define TIM_CCMR_OCM_PWM1    6u        /* 110: PWM mode 1, high while CNT < CCR */
 #define TIM_CCMR_CH_HI_SHIFT 8u        /* the second channel of the pair */
 /* TIMx_CCER: CCxE at bit 4*(x-1) */
-#define TIM_CCER_CCE(ch0) (1u << (4u * (ch0))) /* ch0 = channel - 1 */
+#define TIM_CCER_CCE(ch0) ((uint32_t)1u << (4u * (ch0))) /* ch0 = channel - 1 */
 
 /* --- RCC (RM0090 section 7.3) -------------------------------------------- */
 typedef struct {
@@ -83,8 +83,8 @@ typedef struct {
     volatile uint32_t APB2ENR;      /* 0x44 */
 } stm32_rcc_t;
 
-_Static_assert(offsetof(stm32_rcc_t, AHB1ENR) == 0x30, "RCC AHB1ENR offset");
-_Static_assert(offsetof(stm32_rcc_t, APB1ENR) == 0x40, "RCC APB1ENR offset");
+_Static_assert((size_t)offsetof(stm32_rcc_t, AHB1ENR) == 0x30u, "RCC AHB1ENR offset");
+_Static_assert((size_t)offsetof(stm32_rcc_t, APB1ENR) == 0x40u, "RCC APB1ENR offset");
 
 #define STM32_RCC_BASE 0x40023800u
 
@@ -111,7 +111,7 @@ typedef struct {
     volatile uint32_t AFR[2];  /* 0x20 AFRL (pins 0-7), 0x24 AFRH (8-15): 4 bits per pin */
 } stm32_gpio_t;
 
-_Static_assert(offsetof(stm32_gpio_t, AFR) == 0x20, "GPIO AFRL offset");
+_Static_assert((size_t)offsetof(stm32_gpio_t, AFR) == 0x20u, "GPIO AFRL offset");
 
 #define STM32_GPIOA_BASE 0x40020000u
 #define STM32_GPIOB_BASE 0x40020400u

@@ -25,7 +25,11 @@ stm32_usart_status_t stm32_usart_init(stm32_usart_t *u, stm32_usart_regs_t *regs
         return STM32_USART_ERR_RANGE;
     }
     u->regs = regs;
-    u->overrun = u->framing = u->noise = u->parity = u->tx_timeouts = 0u;
+    u->overrun = 0u;
+    u->framing = 0u;
+    u->noise = 0u;
+    u->parity = 0u;
+    u->tx_timeouts = 0u;
     regs->CR1 = 0u; /* disabled while configured; M = 0, no parity, OVER8 = 0 */
     regs->CR2 = 0u; /* one stop bit */
     regs->CR3 = 0u; /* no flow control, no DMA */
@@ -44,16 +48,16 @@ int stm32_usart_read(stm32_usart_t *u, uint8_t *byte)
     if ((sr & (USART_SR_RXNE | USART_SR_ORE)) == 0u) {
         return 0;
     }
-    if (sr & USART_SR_ORE) {
+    if ((sr & USART_SR_ORE) != 0u) {
         count(&u->overrun);
     }
-    if (sr & USART_SR_FE) {
+    if ((sr & USART_SR_FE) != 0u) {
         count(&u->framing);
     }
-    if (sr & USART_SR_NF) {
+    if ((sr & USART_SR_NF) != 0u) {
         count(&u->noise);
     }
-    if (sr & USART_SR_PE) {
+    if ((sr & USART_SR_PE) != 0u) {
         count(&u->parity);
     }
     *byte = (uint8_t)(u->regs->DR & 0xFFu); /* SR then DR: clears RXNE and the errors */

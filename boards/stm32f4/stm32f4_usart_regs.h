@@ -20,10 +20,10 @@ typedef struct {
     volatile uint32_t GTPR; /* 0x18 guard time and prescaler (smartcard, IrDA) */
 } stm32_usart_regs_t;
 
-_Static_assert(offsetof(stm32_usart_regs_t, DR) == 0x04, "USART DR offset");
-_Static_assert(offsetof(stm32_usart_regs_t, BRR) == 0x08, "USART BRR offset");
-_Static_assert(offsetof(stm32_usart_regs_t, CR1) == 0x0C, "USART CR1 offset");
-_Static_assert(offsetof(stm32_usart_regs_t, GTPR) == 0x18, "USART GTPR offset");
+_Static_assert((size_t)offsetof(stm32_usart_regs_t, DR) == 0x04u, "USART DR offset");
+_Static_assert((size_t)offsetof(stm32_usart_regs_t, BRR) == 0x08u, "USART BRR offset");
+_Static_assert((size_t)offsetof(stm32_usart_regs_t, CR1) == 0x0Cu, "USART CR1 offset");
+_Static_assert((size_t)offsetof(stm32_usart_regs_t, GTPR) == 0x18u, "USART GTPR offset");
 
 #define STM32_USART1_BASE 0x40011000u /* APB2; clocked by PCLK2 (16 MHz after reset) */
 
@@ -40,10 +40,10 @@ _Static_assert(offsetof(stm32_usart_regs_t, GTPR) == 0x18, "USART GTPR offset");
 #define USART_SR_ERRORS (USART_SR_PE | USART_SR_FE | USART_SR_NF | USART_SR_ORE)
 
 /* USART_CR1 (M = 0: 8 data bits, PCE = 0: no parity, OVER8 = 0: 16x oversampling) */
-#define USART_CR1_RE     (1u << 2)  /* receiver enable */
-#define USART_CR1_TE     (1u << 3)  /* transmitter enable */
-#define USART_CR1_RXNEIE (1u << 5)  /* interrupt while RXNE or ORE is set */
-#define USART_CR1_UE     (1u << 13) /* USART enable */
+#define USART_CR1_RE     (1u << 2)            /* receiver enable */
+#define USART_CR1_TE     (1u << 3)            /* transmitter enable */
+#define USART_CR1_RXNEIE (1u << 5)            /* interrupt while RXNE or ORE is set */
+#define USART_CR1_UE     ((uint32_t)1u << 13) /* USART enable */
 
 /* USART1's interrupt line (RM0090 table 61, position 37) and the Cortex-M4
  * NVIC interrupt set-enable registers (ISER0..7 at 0xE000E100, one bit per
