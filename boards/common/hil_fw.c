@@ -199,6 +199,12 @@ static void start(hil_fw_t *h)
         ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_SPD, 0u);
         return;
     }
+    const ht_upset_guard_params_t ug = HT_UPSET_GUARD_PARAMS_DEFAULT;
+    h->ug = ug;
+    if (ht_upset_guard_check(&h->ug) != HT_UG_OK) {
+        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_ALT, 0u);
+        return;
+    }
     uint8_t bad_channel = 0u;
     if (os_config_check(&h->out_staged, &bad_channel) != OS_OK) {
         ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_OUT, bad_channel);
@@ -215,6 +221,7 @@ static void start(hil_fw_t *h)
     h->alt_state.integral_q20[1] = q_clamp32(h->alt_integral_q20[1], -max_i_q20, max_i_q20);
     h->spd = h->spd_staged;
     ht_speed_hold_reset(&h->spd_state);
+    ht_upset_guard_reset(&h->ug_state);
     h->out = h->out_staged;
     h->steps = 0u;
     h->started = 1u;
@@ -236,6 +243,10 @@ void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
         pitch = ht_alt_hold_step(&h->alt, &h->alt_state, in->altitude_cmd_cm, in->altitude_cm,
                                  in->climb_cm_s, (in->imu.down_q14[2] < 0) ? 1u : 0u);
     }
+    /* nose-low inverted upset: unload, roll upright, then pull (upset_guard.h) */
+    pitch = ht_upset_guard_step(&h->ug, &h->ug_state, in->imu.down_q14[0], in->imu.down_q14[1],
+                                in->imu.down_q14[2],
+                                ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u, pitch);
     q14_t throttle = in->throttle;
     if ((in->flags & HIL_SF_SPEED_HOLD) != 0u) {
         throttle = ht_speed_hold_step(&h->spd, &h->spd_state, in->airspeed_cmd_cm_s,

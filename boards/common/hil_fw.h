@@ -25,6 +25,7 @@
 #include "helical/hil_frame.h"
 #include "helical/holds.h"
 #include "helical/output_stage.h"
+#include "helical/upset_guard.h"
 
 #define HIL_PROTOCOL_VERSION 1u
 
@@ -107,6 +108,8 @@ typedef struct {
     ht_alt_hold_state_t alt_state;
     ht_speed_hold_params_t spd;
     ht_speed_hold_state_t spd_state;
+    ht_upset_guard_params_t ug; /* the library defaults (no protocol field) */
+    ht_upset_guard_state_t ug_state;
     os_config_t out;
     uint8_t started;
     /* link */

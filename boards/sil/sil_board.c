@@ -298,6 +298,12 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (ht_speed_hold_check(&b->spd) != HT_HOLD_OK) {
         return fail(err, err_len, "airspeed_hold");
     }
+    const ht_upset_guard_params_t ug = HT_UPSET_GUARD_PARAMS_DEFAULT;
+    b->ug = ug;
+    if (ht_upset_guard_check(&b->ug) != HT_UG_OK) {
+        return fail(err, err_len, "upset_guard");
+    }
+    ht_upset_guard_reset(&b->ug_state);
     ht_speed_hold_reset(&b->spd_state);
 
     const double trims[3] = {cfg->trim_aileron, cfg->trim_elevator, cfg->trim_rudder};
@@ -405,6 +411,9 @@ void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command
         pitch = ht_alt_hold_step(&b->alt, &b->alt_state, c->altitude_cm, s->altitude_cm,
                                  s->climb_cm_s, (s->imu.down_q14[2] < 0) ? 1u : 0u);
     }
+    /* nose-low inverted upset: unload, roll upright, then pull (upset_guard.h) */
+    pitch = ht_upset_guard_step(&b->ug, &b->ug_state, s->imu.down_q14[0], s->imu.down_q14[1],
+                                s->imu.down_q14[2], c->inverted, pitch);
     q14_t throttle = c->throttle;
     if (c->speed_hold != 0u) {
         throttle = ht_speed_hold_step(&b->spd, &b->spd_state, c->airspeed_cm_s,

@@ -35,6 +35,7 @@
 #include "helical/holds.h"
 #include "helical/modes.h"
 #include "helical/output_stage.h"
+#include "helical/upset_guard.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -164,6 +165,8 @@ typedef struct {
     ht_alt_hold_state_t alt_state;
     ht_speed_hold_params_t spd;
     ht_speed_hold_state_t spd_state;
+    ht_upset_guard_params_t ug; /* the library defaults, as in the HIL firmware */
+    ht_upset_guard_state_t ug_state;
     os_config_t out;                            /* the output stage: trims live here, in us */
     ht_waypoint_t waypoints[SIL_MAX_WAYPOINTS]; /* read by modes.nav (must not move) */
     ht_modes_t modes;
