@@ -10,6 +10,13 @@
  * ones marked _fit are bounded by construction: unit-size factors (|tilt| <= 1
  * in Q28, |row| <= 2 in Q14, so every product or sum of two is below 2^30),
  * rates below 2^25 in Q20, and the parameter ranges of ht_init.
+ *
+ * Cost (bench/README.md): no division, and three reciprocal square roots,
+ * one each for Eq. 5 (1 + r^2), Eq. 6 (1 + p^2) and Eq. 11 (X^2 + Z^2), each
+ * a table, one Newton step and a single wide product; the target tilt is the
+ * closed form [-r c1 c2, -p c2, c1 c2] rather than two vector
+ * normalizations; shifts are chosen in [17, 32] where the portable product
+ * has its short path.
  */
 #include <stddef.h>
 
@@ -31,6 +38,18 @@ static q14_t q14_from_q28(int32_t v)
 static q11_t q11_from_q20(int32_t v)
 {
     return qi_sat16(qi_rshift_round(v, 9u));
+}
+
+/* The same roundings where the value is known to fit (|v| <= 1 in Q28, a
+ * turn rate no larger than the Q11 input it came from). */
+static q14_t q14_from_q28_fit(int32_t v)
+{
+    return (q14_t)qi_rshift_round(v, 14u);
+}
+
+static q11_t q11_from_q20_fit(int32_t v)
+{
+    return (q11_t)qi_rshift_round(v, 9u);
 }
 
 static int32_t sign_unit_q28(int32_t v)
@@ -67,25 +86,63 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
     return t;
 }
 
-/* Target tilt (Eq. 5, 6 and inverted flight), Q28, and t = sqrt(X^2 + Z^2)
- * of the target. Eq. 6 renormalizes [X1, -p, Z1] with X1^2 + Z1^2 = 1, which
- * is [X1 * t, -p * t, Z1 * t] with t = 1 / sqrt(1 + p^2): (-p*t, t) is the
- * unit vector of (-p, 1). */
-static void target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted, int32_t tilt[3],
-                        int32_t *t_q28)
+/* c = 1/sqrt(1 + v^2) in Q28 for a Q16 v with |v| <= 8 (2^19): 1 + v^2 is
+ * formed in Q24 (at most 65 * 2^24), read by the normalized 1/sqrt as Q28,
+ * i.e. divided by 16, so the root is 4 times too large. v == 0 gives exactly
+ * 1 without the work. */
+#define UNIT_ARG_MAX_Q16 ((int32_t)0x80000) /* 8 in Q16 */
+
+static int32_t inv_hypot1_q28(int32_t v_q16)
 {
-    int32_t roll[2] = {-ratio_q16, Q16_ONE}; /* becomes (X1, Z1) */
-    int32_t pitch[2] = {(pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16, Q16_ONE}; /* (Yt, t) */
-    (void)q_unit_q28(roll, 2u, roll);
-    (void)q_unit_q28(pitch, 2u, pitch);
-    int32_t sign = 1;
-    if (inverted != 0u) {
-        sign = -1;
+    if (v_q16 == 0) {
+        return Q28_ONE;
     }
-    tilt[0] = sign * qi_mul32_fit(roll[0], pitch[1], 28u);
-    tilt[1] = pitch[0];
-    tilt[2] = sign * qi_mul32_fit(roll[1], pitch[1], 28u);
-    *t_q28 = pitch[1];
+    /* v^2 / 2^8 as (32 v)(16 v) / 2^17: the same bits, and a shift the
+     * partial-product form handles in its short path */
+    const int32_t sq_q24 = qi_mul32_fit(v_q16 * 32, v_q16 * 16, 17u) + (int32_t)0x01000000;
+    int exp2;
+    const int32_t y = qi_rsqrt_norm_q28((uint32_t)sq_q24, &exp2); /* exp2 in [-1, 2] here */
+    /* 1/sqrt((1 + v^2) / 16) = y * 2^exp2, so c = y * 2^(exp2 - 2) */
+    const int down = 2 - exp2;
+    return (down <= 0) ? y : qi_rshift_round(y, (unsigned)down);
+}
+
+/* The target tilt (Eq. 5, 6, inverted flight) in Q28, and t = sqrt(X^2 + Z^2)
+ * of the target. Eq. 5 gives the roll unit vector (X1, Z1) = c1 * (-r, 1)
+ * with c1 = 1/sqrt(1 + r^2); Eq. 6 renormalizes [X1, -p, Z1], whose length is
+ * sqrt(1 + p^2), so with c2 = 1/sqrt(1 + p^2) the target is
+ * [-r * c1 * c2, -p * c2, c1 * c2] and t = c2. Two normalizations, three
+ * products. */
+typedef struct {
+    int32_t x, y, z; /* Q28 */
+    int32_t t_q28;
+} target_t;
+
+static target_t target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted)
+{
+    target_t tg;
+    int32_t c2;
+    if (pitch_q16 <= UNIT_ARG_MAX_Q16 && pitch_q16 >= -UNIT_ARG_MAX_Q16) {
+        c2 = inv_hypot1_q28(pitch_q16);
+        tg.y = -qi_mul32_fit(pitch_q16, c2, 16u); /* |p * c2| < 1 */
+    } else {
+        /* A pitch ratio beyond 8 (83 degrees): the general normalization,
+         * which takes any int32. */
+        int32_t v[2] = {(pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16, Q16_ONE};
+        (void)q_unit_q28(v, 2u, v);
+        tg.y = v[0];
+        c2 = v[1];
+    }
+    const int32_t c1 = inv_hypot1_q28(ratio_q16); /* |ratio| <= max_tilt <= 8 */
+    int32_t c12 = c2;
+    if (c1 != Q28_ONE) {
+        c12 = (c2 == Q28_ONE) ? c1 : qi_mul32_fit(c1, c2, 28u);
+    }
+    const int32_t x = -qi_mul32_fit(ratio_q16, c12, 16u); /* |r * c1| < 1 */
+    tg.x = (inverted != 0u) ? -x : x;
+    tg.z = (inverted != 0u) ? -c12 : c12;
+    tg.t_q28 = c2;
+    return tg;
 }
 
 /* a*b - c*d with a, c in Q14 (the actual row) and b, d in Q28: result Q28. */
@@ -95,11 +152,11 @@ static int32_t cross_q28(q14_t a, int32_t b, q14_t c, int32_t d)
 }
 
 /* Roll error (Eq. 8, 9). */
-static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *dot, int32_t *cross,
+static int32_t roll_error(const ht_input_t *in, const target_t *tg, int32_t *dot, int32_t *cross,
                           uint8_t *flags)
 {
-    *dot = qi_mul32x16_fit(tilt[0], in->x, 14u) + qi_mul32x16_fit(tilt[2], in->z, 14u);
-    *cross = cross_q28(in->z, tilt[0], in->x, tilt[2]);
+    *dot = qi_mul32x16_fit(tg->x, in->x, 14u) + qi_mul32x16_fit(tg->z, in->z, 14u);
+    *cross = cross_q28(in->z, tg->x, in->x, tg->z);
     if (*dot > 0) {
         return *cross;
     }
@@ -107,58 +164,118 @@ static int32_t roll_error(const ht_input_t *in, const int32_t tilt[3], int32_t *
     return sign_unit_q28(*cross);
 }
 
-/* Earth-frame pitch error (Eq. 10) and its projection (Eq. 11): body[0], body[2]. */
-static int32_t pitch_earth_frame(const ht_input_t *in, const int32_t tilt[3], int32_t t_q28,
-                                 int32_t body[3], uint8_t *flags)
+/* k * v / 2^shift for a Q28 k and a Q14 row element, shift in [0, 15]; the
+ * caller has shown the result fits (|v| * 2^-shift <= a, and |k| / a bounded). */
+static int32_t scale_row_q28(int32_t k, q14_t v, unsigned shift)
 {
-    int32_t u[2] = {in->x, in->z}; /* becomes [X, Z] / a */
-    int32_t a;
-    if (q_unit_q28(u, 2u, u) != 0) {
-        /* [X, Z].u = |[X, Z]| <= 2.83: each product below 2^30 */
-        a = qi_mul32x16_fit(u[0], in->x, 14u) + qi_mul32x16_fit(u[1], in->z, 14u);
+    if (shift == 0u) {
+        return k * (int32_t)v; /* fits: the caller's proof */
+    }
+    return qi_mul32x16_fit(k, v, shift);
+}
+
+/* m scaled into [2^28, 2^30) the way qi_rsqrt_norm_q28 scaled it for the
+ * exp2 it returned: by 2^(2 * exp2), exp2 in [-1, 14]. */
+static int32_t norm_q28(uint32_t m, int exp2)
+{
+    const int even = 2 * (exp2 + 1);
+    const uint32_t up2 = (uint32_t)even; /* the even shift, >= 0 */
+    if (up2 == 0u) {
+        return (int32_t)(m >> 2);
+    }
+    const uint32_t scaled = m << (up2 - 2u);
+    return (int32_t)scaled;
+}
+
+/* round(v / 2^shift) for shift in [0, 31]. */
+static int32_t qi_rshift_round_0(int32_t v, unsigned shift)
+{
+    return (shift == 0u) ? v : qi_rshift_round(v, shift);
+}
+
+/* Earth-frame pitch error (Eq. 10) and its projection (Eq. 11): body[0],
+ * body[2] = pe * [-Z, X] / a with a = sqrt(X^2 + Z^2). One normalization:
+ * 1/a = y * 2^exp2 in Q28, so a = (X^2 + Z^2) * y * 2^exp2 and
+ * pe / a * X = (pe * y) * X * 2^(exp2 - 14) in Q28. */
+static int32_t pitch_earth_frame(const ht_input_t *in, const target_t *tg, int32_t body[3],
+                                 uint8_t *flags)
+{
+    const int32_t x2 = (int32_t)in->x * in->x; /* each <= 2^30 */
+    const int32_t z2 = (int32_t)in->z * in->z;
+    const uint32_t m_q28 = (uint32_t)x2 + (uint32_t)z2;
+    int32_t a = 0;
+    int32_t y = 0;
+    int exp2 = 0;
+    if (m_q28 != 0u) {
+        y = qi_rsqrt_norm_q28(m_q28, &exp2);
+        /* sqrt(m) = m * y * 2^exp2 / 2^28 = sqrt(m_n) * 2^-exp2 with m_n the
+         * normalized m in [1, 4): a constant-shift product, then the power
+         * of two (a <= 2.83, below 2^30 in Q28) */
+        const int32_t root_q28 = qi_mul32_fit(norm_q28(m_q28, exp2), y, 28u);
+        a = (exp2 >= 0) ? qi_rshift_round_0(root_q28, (unsigned)exp2) : root_q28 * 2;
     } else {
         /* Fuselage vertical: [-Z, 0, X] / a has no direction. Define it as the
          * upright one, [-1, 0, 0], so the whole pitch error goes to the
          * elevator: finite, bounded by |pe|, deterministic. */
         *flags |= HT_F_FUSELAGE_VERTICAL;
-        u[0] = 0;
-        u[1] = Q28_ONE;
-        a = 0;
     }
     /* |Yt * a| <= 2.83 * 2^28 and |Y * t| <= 2^29: the sums stay below 2^31 */
-    int32_t pe = qi_mul32_fit(tilt[1], a, 28u) - qi_mul32x16_fit(t_q28, in->y, 14u);
-    int32_t agree = qi_mul32x16_fit(tilt[1], in->y, 14u) + qi_mul32_fit(a, t_q28, 28u);
+    int32_t pe = qi_mul32_fit(tg->y, a, 28u) - qi_mul32x16_fit(tg->t_q28, in->y, 14u);
+    const int32_t agree = qi_mul32x16_fit(tg->y, in->y, 14u) + qi_mul32_fit(a, tg->t_q28, 28u);
     if (agree <= 0) {
         *flags |= HT_F_PITCH_BEYOND_90;
         pe = sign_unit_q28(pe);
     }
-    body[0] = qi_mul32_fit(-pe, u[1], 28u);
-    body[2] = qi_mul32_fit(pe, u[0], 28u);
+    if (m_q28 == 0u) {
+        body[0] = -pe;
+        body[2] = 0;
+        return pe;
+    }
+    /* k = pe * y: |pe| <= 4.83 in Q28, y <= 2^28; |X|, |Z| <= a, so each
+     * component is at most |pe| */
+    const int32_t k = qi_mul32_fit(pe, y, 28u);
+    const int down = 14 - exp2; /* exp2 in [-1, 14] */
+    const unsigned shift = (unsigned)down;
+    body[0] = -scale_row_q28(k, in->z, shift);
+    body[2] = scale_row_q28(k, in->x, shift);
     return pe;
 }
 
 /* Eq. A.13: the tilt cross product, [Y*Zt - Yt*Z, 0, X*Yt - Xt*Y]. */
-static void pitch_tilt_cross(const ht_input_t *in, const int32_t tilt[3], int32_t body[3])
+static void pitch_tilt_cross(const ht_input_t *in, const target_t *tg, int32_t body[3])
 {
-    body[0] = cross_q28(in->y, tilt[2], in->z, tilt[1]);
-    body[2] = cross_q28(in->x, tilt[1], in->y, tilt[0]);
+    body[0] = cross_q28(in->y, tg->z, in->z, tg->y);
+    body[2] = cross_q28(in->x, tg->y, in->y, tg->x);
 }
 
-/* One axis: d = -kp*s_p*e + kff*s_ff*w_d + kd*s_p*(w_d - g), in Q20 commands. */
+/*
+ * One axis, in Q20 commands:
+ *   d = -kp*s_p*e + kff*s_ff*w_d + kd*s_p*(w_d - g).
+ * Scheduled (s_p = s_ff) it is s_ff * ((kff + kd)*w_d - kd*g - kp*e): three
+ * products and the scale; unscheduled, s_ff * (kff*w_d) + kd*(w_d - g) - kp*e.
+ * Each product is exact before its one rounding; the terms that can exceed
+ * int32 (huge rates times large gains) saturate, and so does every sum.
+ */
 static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q20,
                            int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
 {
-    q16_t gp = ctl->gains.kp[axis];
-    q16_t gd = ctl->gains.kd[axis];
-    if (ctl->schedule != 0u) { /* s_p = s_ff; unscheduled, s_p = 1 costs nothing */
-        gp = qi_mul32_fit(gp, s_ff_q20, 20u);
-        gd = qi_mul32_fit(gd, s_ff_q20, 20u);
+    const q16_t kp = ctl->gains.kp[axis];
+    const q16_t kff = ctl->gains.kff[axis];
+    const q16_t kd = ctl->gains.kd[axis];
+    /* |kp * e| <= 64 * 4.83 commands: fits Q20 */
+    const int32_t p_term = qi_mul32_fit(kp, e_q28, 24u);
+    if (ctl->schedule != 0u) {
+        const int32_t kd_g = qi_mul32x16_fit(kd, gyro_q11, 7u); /* Q16 * Q11 -> Q20, <= 2^30 */
+        /* (k * 2w) / 2^17 is k * w / 2^16 with the same rounding; shifts of
+         * 17 to 32 take the short path of the partial-product form */
+        int32_t sum = qi_mul32(kff + kd, rate_d_q20 * 2, 17u); /* kff + kd <= 2^23 */
+        sum = qi_sub_sat32(qi_sub_sat32(sum, kd_g), p_term);
+        return qi_mul32(sum, s_ff_q20, 20u);
     }
-    q16_t gff = qi_mul32_fit(ctl->gains.kff[axis], s_ff_q20, 20u);
-    int32_t rate_error_q20 = rate_d_q20 - (int32_t)gyro_q11 * 512;
-    int32_t d = qi_mul32(gp, e_q28, 24u);
-    d = qi_sub_sat32(qi_mul32(gff, rate_d_q20, 16u), d);
-    return qi_add_sat32(d, qi_mul32(gd, rate_error_q20, 16u));
+    const int32_t rate_error_q20 = qi_sub_sat32(rate_d_q20, (int32_t)gyro_q11 * 512);
+    int32_t d = qi_mul32(qi_mul32(kff, rate_d_q20 * 2, 17u), s_ff_q20, 20u);
+    d = qi_add_sat32(d, qi_mul32(kd, rate_error_q20 * 2, 17u)); /* |w - g| <= 2^26 */
+    return qi_sub_sat32(d, p_term);
 }
 
 static q14_t surface_from_q20(int32_t d_q20, uint8_t *flags)
@@ -195,8 +312,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     turn_t turn = limit_turn(ctl, in->turn_rate_rad_s, s_cm_s, inv_s, &flags);
 
     /* 2-3. Target tilt. */
-    int32_t tilt[3], t_q28;
-    target_tilt(turn.ratio_q16, in->pitch_ratio, in->inverted, tilt, &t_q28);
+    const target_t tg = target_tilt(turn.ratio_q16, in->pitch_ratio, in->inverted);
 
     /* 4. Target body rate from the actual tilt (Eq. 3), Q20 rad/s. */
     const q14_t row[3] = {in->x, in->y, in->z};
@@ -207,15 +323,15 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
 
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
     int32_t e[3], roll_dot, roll_cross, pe = 0;
-    e[1] = roll_error(in, tilt, &roll_dot, &roll_cross, &flags);
+    e[1] = roll_error(in, &tg, &roll_dot, &roll_cross, &flags);
     if (ctl->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) {
-        pitch_tilt_cross(in, tilt, e);
+        pitch_tilt_cross(in, &tg, e);
     } else {
-        pe = pitch_earth_frame(in, tilt, t_q28, e, &flags);
+        pe = pitch_earth_frame(in, &tg, e, &flags);
     }
 
     /* 9. Airspeed scale, Q20: s_ff = v_ref / S (s_p is s_ff when scheduled, else 1). */
-    int32_t s_ff_q20 = qi_mul32_fit(ctl->v_ref_cm_s, inv_s.inv_q30, 10u + inv_s.exp);
+    int32_t s_ff_q20 = qi_mul32x16_fit(inv_s.inv_q30, ctl->v_ref_cm_s, 10u + inv_s.exp); /* int16 */
 
     /* 10-11. Demands and surfaces. */
     o->elevator = surface_from_q20(
@@ -226,11 +342,11 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     o->rudder = surface_from_q20(axis_demand(ctl, 2u, s_ff_q20, e[2], rate_d[2], in->gyro_rad_s[2]),
                                  &flags);
 
-    o->turn_rate_used_rad_s = q11_from_q20(turn.omega_q20);
+    o->turn_rate_used_rad_s = q11_from_q20_fit(turn.omega_q20);
     o->tilt_ratio = turn.ratio_q16;
-    o->tilt_x = q14_from_q28(tilt[0]);
-    o->tilt_y = q14_from_q28(tilt[1]);
-    o->tilt_z = q14_from_q28(tilt[2]);
+    o->tilt_x = q14_from_q28_fit(tg.x);
+    o->tilt_y = q14_from_q28_fit(tg.y);
+    o->tilt_z = q14_from_q28_fit(tg.z);
     o->rate_x_rad_s = q11_from_q20(rate_d[0]);
     o->rate_y_rad_s = q11_from_q20(rate_d[1]);
     o->rate_z_rad_s = q11_from_q20(rate_d[2]);

@@ -96,7 +96,7 @@ int32_t q_mul32x16_portable(int32_t a, int16_t b, unsigned shift)
  * of 1/64 on [1, 2]) and round(2^15 / sqrt(2 + (i - 64)/32)) for i = 65..128
  * (steps of 1/32 on [2, 4]): power-of-two steps, so the index is a shift, and
  * linear interpolation is within 3e-5 everywhere. */
-static const uint16_t rsqrt_table_q15[129] = {
+const uint16_t q_rsqrt_table_q15[129] = {
     32768, 32515, 32268, 32026, 31790, 31558, 31332, 31111, 30894, 30682, 30474, 30270, 30070,
     29874, 29682, 29494, 29309, 29127, 28949, 28774, 28602, 28434, 28268, 28105, 27945, 27787,
     27632, 27480, 27330, 27183, 27038, 26895, 26755, 26617, 26481, 26346, 26214, 26084, 25956,
@@ -138,16 +138,38 @@ int32_t q_rsqrt_q28(int32_t s_q28)
     if (u < ((uint32_t)1 << 29)) { /* [1, 2): steps of 2^22 */
         uint32_t off = u - ((uint32_t)1 << 28);
         /* Q15 -> Q28 */
-        y_q28 = table_interp_q15(rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) * 8192;
+        y_q28 = table_interp_q15(q_rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) * 8192;
     } else { /* [2, 4): steps of 2^23 */
         uint32_t off = u - ((uint32_t)1 << 29);
-        y_q28 = table_interp_q15(rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) * 8192;
+        y_q28 = table_interp_q15(q_rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) * 8192;
     }
     /* Newton for 1/sqrt: y <- y * (3 - s*y^2) / 2 squares the relative error. */
     int32_t sy2_q28 = qi_mul32_fit(s, qi_mul32_fit(y_q28, y_q28, 28u), 28u);
     y_q28 = qi_mul32_fit(y_q28, (Q28_THREE_I32 - sy2_q28) / 2, 28u);
     const uint32_t y_u = (uint32_t)y_q28 << quarter; /* y_q28 > 0 */
     return (int32_t)y_u;
+}
+
+int32_t q_rsqrt_norm_q28(uint32_t x, int *exp2)
+{
+    return qi_rsqrt_norm_q28(x, exp2);
+}
+
+/* The documented shift range [1, 46], enforced: a shift outside it is read
+ * as the nearest end, never as an undefined shift. */
+static unsigned fit_shift(unsigned shift)
+{
+    return (shift < 1u) ? 1u : ((shift > 46u) ? 46u : shift);
+}
+
+int32_t q_mul32_fit(int32_t a, int32_t b, unsigned shift)
+{
+    return qi_mul32_fit(a, b, fit_shift(shift));
+}
+
+int32_t q_mul32_fit_portable(int32_t a, int32_t b, unsigned shift)
+{
+    return qi_mul32_fit_portable(a, b, fit_shift(shift));
 }
 
 int32_t q_recip_q30(int32_t x, unsigned *exponent)

@@ -35,6 +35,14 @@
     ((int16_t)((x) > INT16_MAX ? INT16_MAX : ((x) < INT16_MIN ? INT16_MIN : (x))))
 #endif
 
+#if !HT_PORTABLE_ONLY && defined(__ARM_FEATURE_QBIT) && defined(__ARM_FEATURE_DSP)
+/* Cortex-M4/M7: QADD, QSUB: the saturating 32-bit add and subtract in one
+ * instruction, the same bits as the portable tests. */
+#define Q_TARGET_HAS_QADD 1
+#else
+#define Q_TARGET_HAS_QADD 0
+#endif
+
 /* A 32x32->64 multiply in hardware: x86-64, AArch64, ARMv7-M (SMULL). */
 #if !HT_PORTABLE_ONLY && (defined(__x86_64__) || defined(__aarch64__) ||                           \
                           defined(__ARM_ARCH_7M__) || defined(__ARM_ARCH_7EM__))

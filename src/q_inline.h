@@ -49,6 +49,17 @@ static inline unsigned qi_clz32(uint32_t x)
 #endif
 }
 
+#if Q_TARGET_HAS_QADD
+static inline int32_t qi_add_sat32(int32_t a, int32_t b)
+{
+    return __qadd(a, b);
+}
+
+static inline int32_t qi_sub_sat32(int32_t a, int32_t b)
+{
+    return __qsub(a, b);
+}
+#else
 static inline int32_t qi_add_sat32(int32_t a, int32_t b)
 {
     if ((b > 0) && (a > (INT32_MAX - b))) {
@@ -70,6 +81,7 @@ static inline int32_t qi_sub_sat32(int32_t a, int32_t b)
     }
     return a - b;
 }
+#endif
 
 /* 64-bit unsigned value as two 32-bit halves. */
 typedef struct {
@@ -143,9 +155,82 @@ static inline u64pair_t smul32_round_shift(int32_t a, int32_t b, unsigned shift)
     return r;
 }
 
+/*
+ * The signed product a*b as hi * 2^32 + mid * 2^16 + (low 16 bits), from four
+ * 16x16 partial products with signed high halves: a = ah * 2^16 + al with
+ * 0 <= al < 2^16, so ah*bl and al*bh fit an int32 and no sign correction is
+ * needed. mid carries up to 2 bits above its 16 (it is < 3 * 2^16), and the
+ * low 16 bits of al*bl are left out: a shift of 16 or more cannot see them.
+ * This is what a core without a 32x32->64 multiplier (Cortex-M0) wants: about
+ * half the instructions of the unsigned 64-bit form above.
+ */
+typedef struct {
+    int32_t hi;
+    uint32_t mid;
+} smul_parts_t;
+
+static QI_ALWAYS_INLINE smul_parts_t smul32_parts(int32_t a, int32_t b, uint32_t mid_add)
+{
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t ah = a >> 16;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t bh = b >> 16;
+    const uint32_t al = (uint32_t)a & 0xFFFFu;
+    const uint32_t bl = (uint32_t)b & 0xFFFFu;
+    const uint32_t ll = al * bl;
+    const int32_t m1 = ah * (int32_t)bl; /* |.| < 2^31 */
+    const int32_t m2 = (int32_t)al * bh;
+    smul_parts_t p;
+    p.mid = (ll >> 16) + ((uint32_t)m1 & 0xFFFFu) + ((uint32_t)m2 & 0xFFFFu) + mid_add;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    p.hi = (ah * bh) + (m1 >> 16) + (m2 >> 16); /* |.| <= 2^30 + 2^16 */
+    return p;
+}
+
+/* 2^(shift-17) for shift in [17, 32]: the rounding half in units of 2^16. */
+static QI_ALWAYS_INLINE uint32_t mid_half(unsigned shift)
+{
+    return (uint32_t)1u << (shift - 17u);
+}
+
+/* Shift >= 33: the result is the high word shifted, rounded on its own. */
+static QI_ALWAYS_INLINE int32_t parts_shift_above_32(smul_parts_t p, unsigned shift)
+{
+    const uint32_t carry = p.mid >> 16;
+    const int32_t hi = p.hi + (int32_t)carry; /* floor(a*b / 2^32) */
+    const uint32_t half_u = (uint32_t)1u << (shift - 33u);
+    const int32_t half = (int32_t)half_u;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    return (hi + half) >> (shift - 32u);
+}
+
 static inline int32_t qi_mul32_portable(int32_t a, int32_t b, unsigned shift)
 {
-    u64pair_t r = smul32_round_shift(a, b, shift);
+    if (shift >= 17u && shift <= 32u) {
+        /* (a*b + 2^(shift-1)) = hr * 2^32 + (mid16 * 2^16 + low16): the
+         * result is hr * 2^(32-shift) + mid16 >> (shift-16), which fits an
+         * int32 exactly when -2^(shift-1) <= hr < 2^(shift-1). */
+        const smul_parts_t p = smul32_parts(a, b, mid_half(shift));
+        const uint32_t carry = p.mid >> 16;
+        const int32_t hr = p.hi + (int32_t)carry;
+        if (shift < 32u) {
+            const uint32_t lim_u = (uint32_t)1u << (shift - 1u);
+            const int32_t lim = (int32_t)lim_u;
+            if (hr >= lim) {
+                return INT32_MAX;
+            }
+            if (hr < -lim) {
+                return INT32_MIN;
+            }
+        }
+        const uint32_t r_u = ((uint32_t)hr << (32u - shift)) + ((p.mid & 0xFFFFu) >> (shift - 16u));
+        return (int32_t)r_u;
+    }
+    if (shift > 32u) {
+        return parts_shift_above_32(smul32_parts(a, b, 0u), shift); /* |.| <= 2^30: fits */
+    }
+    /* shifts 1..16 (0 is read as 1: never an undefined shift) */
+    u64pair_t r = smul32_round_shift(a, b, (shift < 1u) ? 1u : shift);
     int32_t lo = (int32_t)r.lo;
     /* it fits iff the high half is the sign extension of the low half */
     // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
@@ -153,6 +238,21 @@ static inline int32_t qi_mul32_portable(int32_t a, int32_t b, unsigned shift)
         return ((int32_t)r.hi < 0) ? INT32_MIN : INT32_MAX;
     }
     return lo;
+}
+
+/* qi_mul32_portable where the caller has shown that the result fits. */
+static inline int32_t qi_mul32_fit_portable(int32_t a, int32_t b, unsigned shift)
+{
+    if (shift >= 17u && shift <= 32u) {
+        const smul_parts_t p = smul32_parts(a, b, mid_half(shift));
+        /* mid's carries are added at their weight by the shift of mid */
+        const uint32_t r_u = ((uint32_t)p.hi << (32u - shift)) + (p.mid >> (shift - 16u));
+        return (int32_t)r_u;
+    }
+    if (shift > 32u) {
+        return parts_shift_above_32(smul32_parts(a, b, 0u), shift);
+    }
+    return (int32_t)smul32_round_shift(a, b, (shift < 1u) ? 1u : shift).lo; /* shifts 1..16 */
 }
 
 #if Q_TARGET_HAS_MUL64
@@ -255,7 +355,7 @@ static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 #else
 static inline int32_t qi_mul32_fit(int32_t a, int32_t b, unsigned shift)
 {
-    return (int32_t)smul32_round_shift(a, b, shift).lo;
+    return qi_mul32_fit_portable(a, b, shift);
 }
 static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
 {
@@ -283,5 +383,55 @@ static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
     return (int32_t)r_u;
 }
 #endif
+
+/*
+ * 1/sqrt of a positive x read as Q28, as a mantissa and a power of two:
+ * 1/sqrt(x * 2^-28) = y * 2^*exp2 * 2^-28 with y in Q28, 2^27 <= y <= 2^28
+ * and *exp2 in [-1, 14]. x is first scaled by an even power of two into
+ * [2^28, 2^30) (bits are lost only when x >= 2^30: at most 2 of 31);
+ * a 129-entry table over [1, 4) with linear interpolation gives a 16-bit y0
+ * within 6.2e-5 (q14.c), and one Newton step y = y0 + y0 * (1 - x*y0^2) / 2
+ * leaves a relative error below 1e-8 (test_q14_sqrt_div). The residual is
+ * below 2^15 in Q28, so the correction is a 16x16-wide product, and y0^2 is
+ * exact: one wide product in all. Needs x != 0 (x == 0 is read as 1).
+ */
+extern const uint16_t q_rsqrt_table_q15[129];
+
+static QI_ALWAYS_INLINE int32_t qi_rsqrt_norm_q28(uint32_t x, int *exp2)
+{
+    const uint32_t xs = (x != 0u) ? x : 1u;
+    const unsigned lz = qi_clz32(xs);
+    /* the even shift that puts the top bit at 28 or 29 */
+    const unsigned even = lz & ~1u;
+    uint32_t xn;
+    if (even >= 2u) {
+        xn = xs << (even - 2u);
+    } else {
+        xn = xs >> 2;
+    }
+    *exp2 = ((int)even / 2) - 1;
+    uint32_t idx;
+    uint32_t frac_q15;
+    /* the masks keep the index inside the table by construction */
+    if (xn < ((uint32_t)1u << 29)) { /* [1, 2): steps of 2^22, cells 0..63 */
+        idx = (xn >> 22) & 63u;
+        frac_q15 = (xn >> 7) & 0x7FFFu;
+    } else { /* [2, 4): steps of 2^23, cells 64..127 */
+        idx = (xn >> 23) & 127u;
+        frac_q15 = (xn >> 8) & 0x7FFFu;
+    }
+    const int32_t t0 = (int32_t)q_rsqrt_table_q15[idx];
+    const int32_t t1 = (int32_t)q_rsqrt_table_q15[idx + 1u];
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t y0 = t0 + ((((t1 - t0) * (int32_t)frac_q15) + 16384) >> 15); /* Q15 */
+    const uint32_t y0sq_q30 = (uint32_t)y0 * (uint32_t)y0;                     /* <= 2^30 */
+    /* x * y0^2 ~ 1: Q28 * Q30 -> Q28 */
+    const int32_t xy2_q28 = qi_mul32_fit((int32_t)xn, (int32_t)y0sq_q30, 30u);
+    const int32_t resid_q28 = (int32_t)0x10000000 - xy2_q28; /* |.| < 2^15 */
+    /* y0 * resid / 2: Q15 * Q28 -> Q28 needs >> 15, the halving one more */
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t corr_q28 = ((y0 * resid_q28) + 32768) >> 16;
+    return (y0 * 8192) + corr_q28;
+}
 
 #endif /* HELICAL_Q_INLINE_H */

@@ -100,6 +100,15 @@ int32_t q_mul32_portable(int32_t a, int32_t b, unsigned shift);
 int32_t q_mul32x16(int32_t a, int16_t b, unsigned shift);
 int32_t q_mul32x16_portable(int32_t a, int16_t b, unsigned shift);
 
+/*
+ * q_mul32 where the caller has shown that the rounded result fits an int32
+ * (the control step's products): no saturation test. Where it does not fit,
+ * the result is the low 32 bits of the rounded product (defined, not UB).
+ * shift in [1, 46]; a shift outside is read as the nearest end.
+ */
+int32_t q_mul32_fit(int32_t a, int32_t b, unsigned shift);
+int32_t q_mul32_fit_portable(int32_t a, int32_t b, unsigned shift);
+
 /* --- division, reciprocal and square root -------------------------------- */
 
 /*
@@ -122,6 +131,14 @@ q14_t q14_recip(q14_t x);
  * clamped to it.
  */
 int32_t q_rsqrt_q28(int32_t s_q28);
+
+/*
+ * 1/sqrt of any positive x read as Q28, without division, as a mantissa and a
+ * power of two: 1/sqrt(x / 2^28) = y * 2^*exp2 / 2^28, with y in Q28 within
+ * [2^27, 2^28] and *exp2 in [-1, 14]; relative error below 1e-8. One wide
+ * product (the Newton residual). x == 0 is read as 1.
+ */
+int32_t q_rsqrt_norm_q28(uint32_t x, int *exp2);
 
 /*
  * Reciprocal of a positive integer x (1 <= x < 2^31), without division:

@@ -328,6 +328,87 @@ static void test_q_rsqrt_q28_whole_range(void)
     TEST_ASSERT_EQUAL_INT64_MESSAGE(0, r.over, r.first);
 }
 
+/* ---- q_rsqrt_norm_q28 (any positive x, mantissa and power of two) ---------- */
+
+/* q14.h: "relative error below 1e-8". */
+#define RSQRT_NORM_REL_BOUND 1e-8L
+
+static void rsqrt_norm_case(rel_stats_t *r, uint32_t x, int *bad_range)
+{
+    int exp2 = 99;
+    int32_t y = q_rsqrt_norm_q28(x, &exp2);
+    if (exp2 < -1 || exp2 > 14 || y < (1 << 27) || y > (1 << 28)) {
+        (*bad_range)++;
+    }
+    /* 1/sqrt(x / 2^28) = y * 2^exp2 / 2^28 */
+    long double exact = 16384.0L / sqrtl((long double)x);
+    long double got = ldexpl((long double)y, exp2 - 28);
+    long double rel = fabsl(got / exact - 1.0L);
+    r->cases++;
+    if (rel > r->worst_rel) {
+        r->worst_rel = rel;
+        r->worst_in = (int32_t)(x >> 1);
+        r->worst_out = y;
+    }
+    if (!(rel < RSQRT_NORM_REL_BOUND) && r->over++ == 0) {
+        snprintf(r->first, sizeof r->first,
+                 "q_rsqrt_norm_q28(%" PRIu32 ") = %" PRId32
+                 " * 2^%d, exact %.6Le, relative error %.3Le",
+                 x, y, exp2, exact, rel);
+    }
+}
+
+static void test_q_rsqrt_norm_q28_every_octave(void)
+{
+    rel_stats_t r;
+    memset(&r, 0, sizeof r);
+    int bad_range = 0;
+    /* The normalized mantissas [2^28, 2^30): a stride-61 sweep (every table
+     * cell many times; a Newton residual beyond its 2^15 bound would show as
+     * a wrong result here) and every knot with its neighbours. */
+    for (uint32_t x = 1u << 28; x < (1u << 30); x += 61u) {
+        rsqrt_norm_case(&r, x, &bad_range);
+    }
+    for (uint32_t i = 0; i <= 64u; i++) {
+        for (int d = -3; d <= 3; d++) {
+            rsqrt_norm_case(&r, (uint32_t)((int64_t)(1u << 28) + (int64_t)i * (1 << 22) + d),
+                            &bad_range);
+            rsqrt_norm_case(&r, (uint32_t)((int64_t)(1u << 29) + (int64_t)i * (1 << 23) + d),
+                            &bad_range);
+        }
+    }
+    /* Every power of two and its neighbours, and 10^6 log-uniform x over the
+     * whole uint32 range (exp2 from -1 to 14). */
+    for (unsigned k = 0; k < 32u; k++) {
+        const uint32_t p = 1u << k;
+        rsqrt_norm_case(&r, p, &bad_range);
+        rsqrt_norm_case(&r, p + 1u, &bad_range);
+        if (k > 0u) {
+            rsqrt_norm_case(&r, p - 1u, &bad_range);
+        }
+    }
+    rsqrt_norm_case(&r, UINT32_MAX, &bad_range);
+    uint64_t rng = 0x25C4ull;
+    for (int i = 0; i < 1000000; i++) {
+        const unsigned bits = 1u + q14t_below(&rng, 32u);
+        const uint32_t x = (q14t_u32(&rng) >> (32u - bits)) | (1u << (bits - 1u));
+        rsqrt_norm_case(&r, x, &bad_range);
+    }
+    printf("[q14] q_rsqrt_norm_q28 cases=%lld worst relative error = %.4Le; out of range: %d; "
+           "cases >= 1e-8: %lld\n",
+           r.cases, r.worst_rel, bad_range, r.over);
+    /* exact at the powers of four, and x == 0 read as 1 */
+    int e = 0;
+    TEST_ASSERT_EQUAL_INT32(1 << 28, q_rsqrt_norm_q28(1u << 28, &e));
+    TEST_ASSERT_EQUAL_INT(0, e);
+    TEST_ASSERT_EQUAL_INT32(1 << 28, q_rsqrt_norm_q28(1u, &e));
+    TEST_ASSERT_EQUAL_INT(14, e);
+    TEST_ASSERT_EQUAL_INT32(1 << 28, q_rsqrt_norm_q28(0u, &e));
+    TEST_ASSERT_EQUAL_INT(14, e);
+    TEST_ASSERT_EQUAL_INT(0, bad_range);
+    TEST_ASSERT_EQUAL_INT64_MESSAGE(0, r.over, r.first);
+}
+
 /* ---- q_recip_q30 -------------------------------------------------------------------- */
 
 typedef struct {
@@ -441,6 +522,7 @@ int main(void)
     RUN_TEST(test_q14_div_rows_columns_random);
     RUN_TEST(test_q_isqrt32_exhaustive_2_24_squares_random);
     RUN_TEST(test_q_rsqrt_q28_whole_range);
+    RUN_TEST(test_q_rsqrt_norm_q28_every_octave);
     RUN_TEST(test_q_recip_q30);
     int rc = UNITY_END();
     printf("[q14] test_q14_sqrt_div runtime %.2f s\n", q14t_seconds() - t0);

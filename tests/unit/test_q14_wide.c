@@ -59,6 +59,7 @@ typedef struct {
     q14t_check_t fast;     /* q_mul32 vs reference */
     q14t_check_t portable; /* q_mul32_portable vs reference */
     q14t_check_t same;     /* q_mul32 vs q_mul32_portable, bit for bit */
+    q14t_check_t fit;      /* q_mul32_fit and q_mul32_fit_portable vs reference, where it fits */
     long long ties;        /* cases whose exact quotient ends in exactly 1/2 */
     long long saturated;   /* cases whose exact quotient does not fit an int32 */
 } wide_checks_t;
@@ -82,6 +83,12 @@ static void check_wide(wide_checks_t *w, int32_t a, int32_t b, unsigned shift)
     record(&w->fast, "q_mul32", a, b, shift, fast, want);
     record(&w->portable, "q_mul32_portable", a, b, shift, port, want);
     record(&w->same, "q_mul32 vs q_mul32_portable", a, b, shift, fast, port);
+    if (shift <= 46u && want != INT32_MAX && want != INT32_MIN) {
+        /* the _fit forms promise the same bits whenever the result fits */
+        record(&w->fit, "q_mul32_fit", a, b, shift, q_mul32_fit(a, b, shift), want);
+        record(&w->fit, "q_mul32_fit_portable", a, b, shift, q_mul32_fit_portable(a, b, shift),
+               want);
+    }
     q14t_i128 p = (q14t_i128)a * (q14t_i128)b;
     q14t_i128 mask = ((q14t_i128)1 << shift) - 1;
     if ((p & mask) == ((q14t_i128)1 << (shift - 1u))) {
@@ -146,6 +153,7 @@ static void run_wide(const char *label, long pairs_per_shift)
     q14t_check_init(&w.fast, "q_mul32 == exact");
     q14t_check_init(&w.portable, "q_mul32_portable == exact");
     q14t_check_init(&w.same, "q_mul32 == q_mul32_portable");
+    q14t_check_init(&w.fit, "q_mul32_fit == q_mul32_fit_portable == exact (where it fits)");
     w.ties = 0;
     w.saturated = 0;
     uint64_t rng = 0x3132ull;
@@ -192,6 +200,7 @@ static void run_wide(const char *label, long pairs_per_shift)
     q14t_check_report(&w.fast);
     q14t_check_report(&w.portable);
     q14t_check_report(&w.same);
+    q14t_check_report(&w.fit);
 }
 
 static void test_q_mul32_and_portable_vs_exact_all_shifts(void)
@@ -230,6 +239,7 @@ static void test_q_mul32x16_and_portable_vs_exact_all_shifts(void)
     q14t_check_init(&w.fast, "q_mul32x16 == exact");
     q14t_check_init(&w.portable, "q_mul32x16_portable == exact");
     q14t_check_init(&w.same, "q_mul32x16 == portable == q_mul32");
+    q14t_check_init(&w.fit, "(the _fit forms are checked by run_wide)");
     w.ties = 0;
     w.saturated = 0;
     uint64_t rng = 0x3216ull;
