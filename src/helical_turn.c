@@ -86,10 +86,20 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
     return t;
 }
 
-/* c = 1/sqrt(1 + v^2) in Q28 for a Q16 v with |v| <= 8 (2^19): 1 + v^2 is
- * formed in Q24 (at most 65 * 2^24), read by the normalized 1/sqrt as Q28,
- * i.e. divided by 16, so the root is 4 times too large. v == 0 gives exactly
- * 1 without the work. */
+/* 1/sqrt(1 + v^2) in Q28 from v^2 in Q24 (v^2 <= 64): 1 + v^2 (at most
+ * 65 * 2^24) read by the normalized 1/sqrt as Q28 is divided by 16, so the
+ * root comes out 4 times too large. */
+static int32_t inv_hypot1_from_sq_q24(int32_t sq_q24)
+{
+    int exp2;
+    const int32_t y = qi_rsqrt_norm_q28((uint32_t)(sq_q24 + (int32_t)0x01000000), &exp2);
+    /* 1/sqrt((1 + v^2) / 16) = y * 2^exp2, so c = y * 2^(exp2 - 2); exp2 in [-1, 2] */
+    const int down = 2 - exp2;
+    return (down <= 0) ? y : qi_rshift_round(y, (unsigned)down);
+}
+
+/* c = 1/sqrt(1 + v^2) in Q28 for a Q16 v with |v| <= 8 (2^19). v == 0 gives
+ * exactly 1 without the work. */
 #define UNIT_ARG_MAX_Q16 ((int32_t)0x80000) /* 8 in Q16 */
 
 static int32_t inv_hypot1_q28(int32_t v_q16)
@@ -99,12 +109,24 @@ static int32_t inv_hypot1_q28(int32_t v_q16)
     }
     /* v^2 / 2^8 as (32 v)(16 v) / 2^17: the same bits, and a shift the
      * partial-product form handles in its short path */
-    const int32_t sq_q24 = qi_mul32_fit(v_q16 * 32, v_q16 * 16, 17u) + (int32_t)0x01000000;
-    int exp2;
-    const int32_t y = qi_rsqrt_norm_q28((uint32_t)sq_q24, &exp2); /* exp2 in [-1, 2] here */
-    /* 1/sqrt((1 + v^2) / 16) = y * 2^exp2, so c = y * 2^(exp2 - 2) */
-    const int down = 2 - exp2;
-    return (down <= 0) ? y : qi_rshift_round(y, (unsigned)down);
+    return inv_hypot1_from_sq_q24(qi_mul32_fit(v_q16 * 32, v_q16 * 16, 17u));
+}
+
+/* Eq. 6's pitch pair for |p| > 8 (beyond 83 degrees, up to any int32):
+ * with q = 1/p (|q| < 1/8, the reciprocal the airspeed already uses),
+ * 1/sqrt(1 + p^2) = |q| h and p/sqrt(1 + p^2) = sign(p) h, h = 1/sqrt(1 + q^2):
+ * the same normalization as the fast path, every result in absolute Q28. */
+static int32_t steep_pitch_q28(q16_t pitch_q16, int32_t *c2)
+{
+    const int32_t mag =
+        (pitch_q16 == INT32_MIN) ? INT32_MAX : ((pitch_q16 < 0) ? -pitch_q16 : pitch_q16);
+    unsigned e;
+    const int32_t m_q30 = q_recip_q30(mag, &e); /* 1/mag = m * 2^-(30 + e), e in [19, 30] */
+    /* 1/p_real = 2^16 / mag = m * 2^(-14 - e): in Q28, m >> (e - 14) */
+    const int32_t q_q28 = qi_rshift_round(m_q30, e - 14u); /* (2^-16, 1/8] */
+    const int32_t h = inv_hypot1_from_sq_q24(qi_mul32_fit(q_q28, q_q28, 32u));
+    *c2 = qi_mul32_fit(q_q28, h, 28u);
+    return (pitch_q16 > 0) ? -h : h;
 }
 
 /* The target tilt (Eq. 5, 6, inverted flight) in Q28, and t = sqrt(X^2 + Z^2)
@@ -126,12 +148,7 @@ static target_t target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted)
         c2 = inv_hypot1_q28(pitch_q16);
         tg.y = -qi_mul32_fit(pitch_q16, c2, 16u); /* |p * c2| < 1 */
     } else {
-        /* A pitch ratio beyond 8 (83 degrees): the general normalization,
-         * which takes any int32. */
-        int32_t v[2] = {(pitch_q16 == INT32_MIN) ? INT32_MAX : -pitch_q16, Q16_ONE};
-        (void)q_unit_q28(v, 2u, v);
-        tg.y = v[0];
-        c2 = v[1];
+        tg.y = steep_pitch_q28(pitch_q16, &c2);
     }
     const int32_t c1 = inv_hypot1_q28(ratio_q16); /* |ratio| <= max_tilt <= 8 */
     int32_t c12 = c2;
