@@ -7,6 +7,8 @@
 
 #include <stddef.h>
 
+#include "mix_inline.h"
+
 static q14_t clamp_q14(int32_t x, int32_t lo, int32_t hi)
 {
     if (x < lo) {
@@ -18,43 +20,14 @@ static q14_t clamp_q14(int32_t x, int32_t lo, int32_t hi)
     return (q14_t)x;
 }
 
-static q14_t surface(int32_t x)
-{
-    return clamp_q14(x, -(int32_t)Q14_ONE, (int32_t)Q14_ONE);
-}
-
 q14_t os_mix(const os_command_t *cmd, uint8_t function)
 {
     if (cmd == NULL) {
         return 0;
     }
-    /* Clamp each input first, so that an out-of-range input cannot push a
-     * sum further than a full-scale one would. */
-    const int32_t ail = surface(cmd->aileron);
-    const int32_t ele = surface(cmd->elevator);
-    const int32_t rud = surface(cmd->rudder);
-
-    switch (function) {
-    case OS_FN_AILERON:
-    case OS_FN_AILERON2:
-        return (q14_t)ail;
-    case OS_FN_ELEVATOR:
-        return (q14_t)ele;
-    case OS_FN_RUDDER:
-        return (q14_t)rud;
-    case OS_FN_THROTTLE:
-        return clamp_q14(cmd->throttle, 0, (int32_t)Q14_ONE);
-    case OS_FN_VTAIL_LEFT:
-        return surface(ele + rud);
-    case OS_FN_VTAIL_RIGHT:
-        return surface(ele - rud);
-    case OS_FN_ELEVON_LEFT:
-        return surface(ele - ail);
-    case OS_FN_ELEVON_RIGHT:
-        return surface(ele + ail);
-    default:
-        return 0; /* OS_FN_NONE and unknown functions: neutral */
-    }
+    /* the rules live in mix_inline.h, shared with os_compute */
+    const mix_inputs_t in = mix_inputs(cmd);
+    return (q14_t)mix_pick(&in, function);
 }
 
 os_status_t os_rc_cal_check(const os_rc_cal_t *cal)

@@ -115,6 +115,83 @@ static void test_elevon_mix(void)
     TEST_ASSERT_EQUAL_INT16(-1, os_mix(&c, OS_FN_ELEVON_RIGHT));
 }
 
+/* The mixes as specified (mixer.h), written independently of the library:
+ * clamp each input, then sum, then saturate. */
+static long ref_clamp(long x, long lo, long hi)
+{
+    return (x < lo) ? lo : ((x > hi) ? hi : x);
+}
+
+static long reference_mix(const os_command_t *c, unsigned function)
+{
+    const long a = ref_clamp(c->aileron, -ONE, ONE);
+    const long e = ref_clamp(c->elevator, -ONE, ONE);
+    const long r = ref_clamp(c->rudder, -ONE, ONE);
+    switch (function) {
+    case 1:
+    case 2:
+        return a;
+    case 3:
+        return e;
+    case 4:
+        return r;
+    case 5:
+        return ref_clamp(c->throttle, 0, ONE);
+    case 6:
+        return ref_clamp(e + r, -ONE, ONE);
+    case 7:
+        return ref_clamp(e - r, -ONE, ONE);
+    case 8:
+        return ref_clamp(e - a, -ONE, ONE);
+    case 9:
+        return ref_clamp(e + a, -ONE, ONE);
+    default:
+        return 0;
+    }
+}
+
+/* Every function (and unknown ones) against the reference: each input over
+ * EVERY int16 value while the other three take each edge value, then a long
+ * pseudo-random run over all four. */
+static void test_mix_matches_reference_every_input(void)
+{
+    static const int16_t edges[] = {INT16_MIN, -16385, -16384, -16383, -8192, -1,       0,
+                                    1,         8191,   16383,  16384,  16385, INT16_MAX};
+    static const unsigned fns[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 200, 255};
+    const unsigned ne = (unsigned)(sizeof edges / sizeof edges[0]);
+    const unsigned nf = (unsigned)(sizeof fns / sizeof fns[0]);
+    long mismatches = 0;
+    for (unsigned axis = 0; axis < 4u; ++axis) {
+        for (unsigned k = 0; k < ne; ++k) {
+            for (int32_t v = INT16_MIN; v <= INT16_MAX; ++v) {
+                int16_t f[4] = {edges[k], edges[k], edges[k], edges[k]};
+                f[axis] = (int16_t)v;
+                const os_command_t c = {f[0], f[1], f[2], f[3]};
+                for (unsigned j = 0; j < nf; ++j) {
+                    if ((long)os_mix(&c, (uint8_t)fns[j]) != reference_mix(&c, fns[j])) {
+                        ++mismatches;
+                    }
+                }
+            }
+        }
+    }
+    uint32_t x = 6u; /* LCG */
+    for (uint32_t n = 0; n < 300000u; ++n) {
+        int16_t f[4];
+        for (unsigned j = 0; j < 4u; ++j) {
+            x = (x * 1664525u) + 1013904223u;
+            f[j] = (int16_t)((int32_t)(x >> 16) - 32768);
+        }
+        const os_command_t c = {f[0], f[1], f[2], f[3]};
+        for (unsigned j = 0; j < nf; ++j) {
+            if ((long)os_mix(&c, (uint8_t)fns[j]) != reference_mix(&c, fns[j])) {
+                ++mismatches;
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_INT32(0, mismatches);
+}
+
 static void test_mix_sums_always_in_range(void)
 {
     /* a coarse sweep of the whole int16 plane: every mixed surface in [-1, 1] */
@@ -356,6 +433,7 @@ int main(void)
     RUN_TEST(test_vtail_mix);
     RUN_TEST(test_elevon_mix);
     RUN_TEST(test_mix_sums_always_in_range);
+    RUN_TEST(test_mix_matches_reference_every_input);
     RUN_TEST(test_vtail_pulses_with_reversal);
     RUN_TEST(test_delta_pulses_with_end_points);
     RUN_TEST(test_second_aileron_channel);

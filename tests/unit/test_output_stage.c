@@ -198,6 +198,127 @@ static void test_unchecked_configs_never_leave_end_points(void)
     TEST_ASSERT_EQUAL_UINT16(0, os_pulse_us(NULL, 0));
 }
 
+/* The rounding of c * travel, proved for EVERY command in [-1, 1], EVERY
+ * travel os_channel_check accepts (and some it refuses, up to 65535), both
+ * reversed states, against the double reference. The end points are wide and
+ * the centre mid-range so that no clamp hides a rounding error (for travels up
+ * to 32767; above, the reference clamps the same way). */
+static void test_rounding_every_command_every_travel(void)
+{
+    static const uint16_t big[] = {1001u,  1023u,  1024u,  4097u,  16383u,
+                                   16384u, 16385u, 32767u, 32768u, 65535u};
+    const uint32_t n_small = (uint32_t)OS_TRAVEL_MAX_US + 1u;
+    const uint32_t n_all = n_small + (uint32_t)(sizeof big / sizeof big[0]);
+    long mismatches = 0;
+    char msg[120] = "";
+    for (uint32_t t = 0u; t < n_all; ++t) {
+        const uint16_t travel = (t < n_small) ? (uint16_t)t : big[t - n_small];
+        for (uint8_t rev = 0u; rev <= 1u; ++rev) {
+            const os_channel_t c = chan(32768u, 0, travel, rev, 0u, 65535u);
+            for (int32_t cmd = -(int32_t)Q14_ONE; cmd <= (int32_t)Q14_ONE; ++cmd) {
+                const uint16_t got = os_pulse_us(&c, (q14_t)cmd);
+                const long want = reference_pulse(&c, cmd);
+                if ((long)got != want) {
+                    if (mismatches == 0) {
+                        (void)snprintf(
+                            msg, sizeof msg, "travel %u reversed %u cmd %ld: %u, want %ld",
+                            (unsigned)travel, (unsigned)rev, (long)cmd, (unsigned)got, want);
+                    }
+                    ++mismatches;
+                }
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_INT32_MESSAGE(0, mismatches, msg);
+}
+
+/* os_compute is documented as os_pulse_us(ch, os_mix(cmd, function)) for each
+ * channel; it computes that with the command clamped once. Checked on every
+ * function (and unknown ones), reversal, trims, odd travels, biting and
+ * inverted end points, over every combination of edge commands and a long
+ * pseudo-random run of int16 commands. */
+static void compute_matches_mix_then_pulse(const os_config_t *cfg, const os_command_t *cmd)
+{
+    uint16_t p[OS_MAX_CHANNELS];
+    TEST_ASSERT_EQUAL(OS_OK, os_compute(cfg, cmd, p));
+    for (uint8_t i = 0; i < cfg->count; ++i) {
+        const uint16_t want = os_pulse_us(&cfg->ch[i], os_mix(cmd, cfg->ch[i].function));
+        if (p[i] != want) {
+            char msg[120];
+            (void)snprintf(msg, sizeof msg, "channel %u cmd %d %d %d %d: %u, want %u", (unsigned)i,
+                           cmd->aileron, cmd->elevator, cmd->rudder, cmd->throttle, (unsigned)p[i],
+                           (unsigned)want);
+            TEST_FAIL_MESSAGE(msg);
+        }
+    }
+}
+
+static void test_compute_equals_mix_then_pulse(void)
+{
+    static const uint8_t fns[2][OS_MAX_CHANNELS] = {
+        {OS_FN_AILERON, OS_FN_AILERON2, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE, OS_FN_NONE,
+         OS_FN_COUNT, 255u},
+        {OS_FN_VTAIL_LEFT, OS_FN_VTAIL_RIGHT, OS_FN_ELEVON_LEFT, OS_FN_ELEVON_RIGHT, OS_FN_AILERON,
+         OS_FN_THROTTLE, OS_FN_ELEVATOR, OS_FN_RUDDER}};
+    static const int16_t edges[] = {INT16_MIN, -16385, -16384, -16383, -8193, -8192, -1,       0,
+                                    1,         8192,   8193,   16383,  16384, 16385, INT16_MAX};
+    const uint32_t ne = (uint32_t)(sizeof edges / sizeof edges[0]);
+    for (uint8_t set = 0u; set < 2u; ++set) {
+        os_config_t cfg;
+        cfg.count = OS_MAX_CHANNELS;
+        for (uint8_t i = 0; i < OS_MAX_CHANNELS; ++i) {
+            os_channel_default(&cfg.ch[i], fns[set][i]);
+            cfg.ch[i].reversed = (uint8_t)((i + set) % 2u);
+        }
+        cfg.ch[1].trim_us = -37;
+        cfg.ch[2].travel_us = 333u;
+        cfg.ch[3].min_us = 1200u; /* end points that bite */
+        cfg.ch[3].max_us = 1650u;
+        cfg.ch[4].travel_us = 1u;
+        cfg.ch[5].min_us = 1800u; /* an inverted pair */
+        cfg.ch[5].max_us = 1200u;
+        cfg.ch[6].travel_us = 65535u; /* unchecked values */
+        cfg.ch[6].trim_us = INT16_MIN;
+        cfg.ch[6].min_us = 0u;
+        cfg.ch[6].max_us = 65535u;
+        cfg.ch[7].travel_us = 0u;
+        cfg.ch[7].centre_us = 2500u;
+        cfg.ch[7].trim_us = 500;
+        for (uint32_t a = 0u; a < ne; ++a) {
+            for (uint32_t e = 0u; e < ne; ++e) {
+                for (uint32_t r = 0u; r < ne; ++r) {
+                    for (uint32_t t = 0u; t < ne; ++t) {
+                        const os_command_t cmd = {edges[a], edges[e], edges[r], edges[t]};
+                        compute_matches_mix_then_pulse(&cfg, &cmd);
+                    }
+                }
+            }
+        }
+        uint32_t x = 12345u; /* LCG: any int16 in each field */
+        for (uint32_t k = 0u; k < 200000u; ++k) {
+            int16_t v[4];
+            for (uint8_t j = 0u; j < 4u; ++j) {
+                x = (x * 1664525u) + 1013904223u;
+                v[j] = (int16_t)((int32_t)((x >> 16) & 0xFFFFu) - 32768);
+            }
+            const os_command_t cmd = {v[0], v[1], v[2], v[3]};
+            compute_matches_mix_then_pulse(&cfg, &cmd);
+        }
+        /* fewer channels: the same values, nothing beyond count written */
+        uint16_t p[OS_MAX_CHANNELS] = {9, 9, 9, 9, 9, 9, 9, 9};
+        const os_command_t cmd = {1234, -5678, 9012, 3456};
+        for (uint8_t n = 1u; n <= OS_MAX_CHANNELS; ++n) {
+            cfg.count = n;
+            compute_matches_mix_then_pulse(&cfg, &cmd);
+        }
+        cfg.count = 3u;
+        TEST_ASSERT_EQUAL(OS_OK, os_compute(&cfg, &cmd, p));
+        for (uint8_t i = 3u; i < OS_MAX_CHANNELS; ++i) {
+            TEST_ASSERT_EQUAL_UINT16(9, p[i]);
+        }
+    }
+}
+
 static void test_channel_check_edges(void)
 {
     os_channel_t c;
@@ -399,11 +520,13 @@ int main(void)
     RUN_TEST(test_exhaustive_end_points_bite);
     RUN_TEST(test_exhaustive_zero_and_full_travel);
     RUN_TEST(test_unchecked_configs_never_leave_end_points);
+    RUN_TEST(test_rounding_every_command_every_travel);
     RUN_TEST(test_channel_check_edges);
     RUN_TEST(test_config_check);
     RUN_TEST(test_compute_standard);
     RUN_TEST(test_compute_throttle_edges);
     RUN_TEST(test_compute_bad_arguments);
+    RUN_TEST(test_compute_equals_mix_then_pulse);
     RUN_TEST(test_failsafe_pulses_respect_end_points);
     RUN_TEST(test_default_channels);
     return UNITY_END();
