@@ -8,13 +8,15 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define HOLD_GAIN_MAX_Q16   (64L * 65536L)
-#define HOLD_RATIO_MAX_Q16  (4L * 65536L)
-#define HOLD_ERROR_MAX_CM   1000000L
-#define HOLD_CLIMB_MAX_CM_S 100000L
-#define HOLD_RATE_MAX_HZ    1000u
+#define HOLD_GAIN_MAX_Q16      (64L * 65536L)
+#define HOLD_RATIO_MAX_Q16     (4L * 65536L)
+#define HOLD_ERROR_MAX_CM      1000000L
+#define HOLD_CLIMB_MAX_CM_S    100000L
+#define HOLD_RATE_MAX_HZ       1000u
+#define HOLD_AIRSPEED_MAX_CM_S 32767L
+#define HOLD_TAU_MAX_MS        60000u
 
-/* a / b rounded to nearest, ties away from zero; b in [1, 1000], so the
+/* a / b rounded to nearest, ties away from zero; b in [1, 60000], so the
  * remainder test cannot overflow. */
 static int32_t div_round_s32(int32_t a, int32_t b)
 {
@@ -50,7 +52,10 @@ ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p)
         !gain_ok(p->kd_pitch_per_m_s) || p->max_pitch <= 0 || p->max_pitch > HOLD_RATIO_MAX_Q16 ||
         p->max_integral_pitch < 0 || p->max_integral_pitch > HOLD_RATIO_MAX_Q16 ||
         p->max_error_cm < 100 || p->max_error_cm > HOLD_ERROR_MAX_CM || p->integral_band_cm < 0 ||
-        p->integral_band_cm > p->max_error_cm || p->rate_hz < 1u || p->rate_hz > HOLD_RATE_MAX_HZ) {
+        p->integral_band_cm > p->max_error_cm || p->rate_hz < 1u || p->rate_hz > HOLD_RATE_MAX_HZ ||
+        p->protect_cm_s < 0 || p->protect_cm_s > HOLD_AIRSPEED_MAX_CM_S ||
+        p->protect_valid_cm_s < 0 || p->protect_valid_cm_s > p->protect_cm_s ||
+        !gain_ok(p->kv_pitch_per_m_s) || p->protect_tau_ms > HOLD_TAU_MAX_MS) {
         return HT_HOLD_ERR_PARAM;
     }
     return HT_HOLD_OK;
@@ -61,11 +66,61 @@ void ht_alt_hold_reset(ht_alt_hold_state_t *s)
     if (s != NULL) {
         s->integral_q20[0] = 0;
         s->integral_q20[1] = 0;
+        s->airspeed_q8 = 0;
+        s->airspeed_valid = 0u;
     }
 }
 
-q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
-                       int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted)
+/* The protection's airspeed: a valid reading (>= protect_valid_cm_s) moves
+ * the filter by 1/n of the difference, n = tau * rate (at least 1; the first
+ * reading after a reset is taken as it is). Returns whether the filter holds
+ * a reading; the filtered airspeed in cm/s goes to *v_cm_s. */
+static bool alt_airspeed(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s,
+                         int16_t airspeed_cm_s, int32_t *v_cm_s)
+{
+    const int32_t v_q8 = (int32_t)airspeed_cm_s * 256; /* |v| <= 2^15: fits */
+    if ((int32_t)airspeed_cm_s >= p->protect_valid_cm_s) {
+        if (s->airspeed_valid == 0u) {
+            s->airspeed_q8 = v_q8;
+            s->airspeed_valid = 1u;
+        } else {
+            /* tau <= 60000 ms, rate <= 1000 Hz: n <= 60000 */
+            int32_t n = div_round_s32((int32_t)p->protect_tau_ms * (int32_t)p->rate_hz, 1000);
+            if (n < 1) {
+                n = 1;
+            }
+            /* saturating: the state is the caller's */
+            s->airspeed_q8 =
+                q_add_sat32(s->airspeed_q8, div_round_s32(q_sub_sat32(v_q8, s->airspeed_q8), n));
+        }
+    }
+    *v_cm_s = q_clamp32(q_rshift_round(s->airspeed_q8, 8), 0, HOLD_AIRSPEED_MAX_CM_S);
+    return s->airspeed_valid != 0u;
+}
+
+/* Upper limit of the pitch ratio: max_pitch, or the airspeed protection's
+ * ceiling (holds.h) while the airspeed is below protect_cm_s and the reading
+ * is valid (not below protect_valid_cm_s). */
+static int32_t alt_ceiling_q16(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, bool protect,
+                               int16_t airspeed_cm_s)
+{
+    if (!protect || p->protect_cm_s == 0) {
+        return p->max_pitch;
+    }
+    int32_t v_cm_s = 0;
+    const bool have = alt_airspeed(p, s, airspeed_cm_s, &v_cm_s);
+    if (!have || (int32_t)airspeed_cm_s < p->protect_valid_cm_s || v_cm_s >= p->protect_cm_s) {
+        return p->max_pitch;
+    }
+    /* deficit <= 32767 cm/s -> <= 83884 in Q8; * kv (<= 2^22) fits q_mul32 */
+    const int32_t deficit_m_q8 = cm_to_m_q8(p->protect_cm_s - v_cm_s);
+    const int32_t drop_q16 = q_mul32(p->kv_pitch_per_m_s, deficit_m_q8, 8);
+    return q_clamp32(q_sub_sat32(p->max_pitch, drop_q16), -p->max_pitch, p->max_pitch);
+}
+
+static q16_t alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
+                           int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted, bool protect,
+                           int16_t airspeed_cm_s)
 {
     if (s == NULL || ht_alt_hold_check(p) != HT_HOLD_OK) {
         return 0;
@@ -79,6 +134,7 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     const int32_t err_m_q8 = cm_to_m_q8(err_cm);
     const int32_t climb_m_q8 =
         cm_to_m_q8(q_clamp32(climb_cm_s, -HOLD_CLIMB_MAX_CM_S, HOLD_CLIMB_MAX_CM_S));
+    const int32_t ceiling_q16 = alt_ceiling_q16(p, s, protect, airspeed_cm_s);
 
     /* Q16 * Q8 >> 8 = Q16 */
     const int32_t p_term_q16 = q_mul32(p->kp_pitch_per_m, err_m_q8, 8);
@@ -90,10 +146,11 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     const int32_t max_i_q20 = p->max_integral_pitch * 16; /* <= 4 * 2^20 */
     int32_t integral_q20 = s->integral_q20[idx];
 
-    /* Output with the old integral decides whether integrating is allowed. */
+    /* Output with the old integral decides whether integrating is allowed;
+     * the upper limit is the ceiling (max_pitch unless the protection cuts it). */
     const int32_t pd_q16 = q_sub_sat32(p_term_q16, d_term_q16);
     const int32_t before_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
-    const bool saturated_high = before_q16 >= p->max_pitch;
+    const bool saturated_high = before_q16 >= ceiling_q16;
     const bool saturated_low = before_q16 <= -p->max_pitch;
     const bool in_band = (err_cm <= p->integral_band_cm) && (err_cm >= -p->integral_band_cm);
     if (in_band && !((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
@@ -102,7 +159,20 @@ q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, in
     s->integral_q20[idx] = integral_q20;
 
     const int32_t out_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
-    return q_clamp32(out_q16, -p->max_pitch, p->max_pitch);
+    return q_clamp32(out_q16, -p->max_pitch, ceiling_q16);
+}
+
+q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
+                       int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted)
+{
+    return alt_hold_step(p, s, target_cm, altitude_cm, climb_cm_s, inverted, false, 0);
+}
+
+q16_t ht_alt_hold_step_v(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
+                         int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted,
+                         int16_t airspeed_cm_s)
+{
+    return alt_hold_step(p, s, target_cm, altitude_cm, climb_cm_s, inverted, true, airspeed_cm_s);
 }
 
 /* --- airspeed hold ------------------------------------------------------- */

@@ -275,6 +275,15 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     b->alt.max_error_cm = to_cm32(cfg->alt_max_error_m);
     b->alt.integral_band_cm = to_cm32(cfg->alt_integral_band_m);
     b->alt.rate_hz = (uint16_t)cfg->control_rate_hz;
+    if (!in_range(cfg->alt_protect_m_s, 0.0, 327.0) ||
+        !in_range(cfg->alt_protect_valid_m_s, 0.0, 327.0) ||
+        !in_range(cfg->alt_protect_tau_s, 0.0, 60.0)) {
+        return fail(err, err_len, "altitude_hold");
+    }
+    b->alt.protect_cm_s = to_cm32(cfg->alt_protect_m_s);
+    b->alt.protect_valid_cm_s = to_cm32(cfg->alt_protect_valid_m_s);
+    b->alt.kv_pitch_per_m_s = to_q16(cfg->alt_kv_pitch_per_m_s);
+    b->alt.protect_tau_ms = (uint16_t)llround(cfg->alt_protect_tau_s * 1000.0);
     if (ht_alt_hold_check(&b->alt) != HT_HOLD_OK) {
         return fail(err, err_len, "altitude_hold");
     }
@@ -408,8 +417,9 @@ void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command
      * orientation (holds.h) */
     q16_t pitch = c->pitch_ratio;
     if (c->altitude_hold != 0u) {
-        pitch = ht_alt_hold_step(&b->alt, &b->alt_state, c->altitude_cm, s->altitude_cm,
-                                 s->climb_cm_s, (s->imu.down_q14[2] < 0) ? 1u : 0u);
+        pitch = ht_alt_hold_step_v(&b->alt, &b->alt_state, c->altitude_cm, s->altitude_cm,
+                                   s->climb_cm_s, (s->imu.down_q14[2] < 0) ? 1u : 0u,
+                                   s->imu.airspeed_cm_s);
     }
     /* nose-low inverted upset: unload, roll upright, then pull (upset_guard.h) */
     pitch = ht_upset_guard_step(&b->ug, &b->ug_state, s->imu.down_q14[0], s->imu.down_q14[1],

@@ -41,7 +41,7 @@
 extern "C" {
 #endif
 
-#define SIL_BOARD_ABI_VERSION 6
+#define SIL_BOARD_ABI_VERSION 7
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -91,6 +91,8 @@ typedef struct {
      * as altitude_m); rounded to whole metres */
     int32_t waypoint_count;
     double waypoints[SIL_MAX_WAYPOINTS][3];
+    /* ABI 7: the altitude hold's airspeed protection (holds.h; protect 0 = off) */
+    double alt_protect_m_s, alt_protect_valid_m_s, alt_kv_pitch_per_m_s, alt_protect_tau_s;
 } sil_config_t;
 
 /* One control step's sensor readings (library axes: X left, Y forward, Z down). */

@@ -69,17 +69,34 @@ typedef struct {
     int32_t max_error_cm;     /* limit on |altitude error|, [100, 1000000] cm */
     int32_t integral_band_cm; /* integrate only while |error| <= this, [0, max_error_cm] */
     uint16_t rate_hz;         /* step rate, [1, 1000] */
+    /* Airspeed protection (ht_alt_hold_step_v; protect_cm_s = 0: off). Below
+     * protect_cm_s the climb demand is cut: the pitch ratio is limited to
+     *   ceiling = max_pitch - kv * (protect - airspeed), at least -max_pitch,
+     * so when the aircraft cannot hold its altitude at the pitch asked for
+     * (a downdraft beyond its climb, full throttle) it gives up altitude for
+     * airspeed instead of slowing into the stall. An airspeed below
+     * protect_valid_cm_s is taken as a failed sensor (a dead pitot reads 0),
+     * not a stall: no protection then, and the reading is not filtered. The
+     * airspeed the ceiling uses is low-pass filtered (first order, time
+     * constant protect_tau_ms; 0 = none) so that the short airspeed dips of
+     * horizontal gusts and one-sample spikes do not pitch the nose down. */
+    int32_t protect_cm_s;       /* [0, 32767] cm/s, 0 = off */
+    int32_t protect_valid_cm_s; /* [0, protect_cm_s] cm/s */
+    q16_t kv_pitch_per_m_s;     /* ceiling drop per m/s below protect_cm_s, [0, 64] */
+    uint16_t protect_tau_ms;    /* [0, 60000] ms */
 } ht_alt_hold_params_t;
 
 /* The caller's state: one integrator per orientation, Q20 pitch ratio. */
 typedef struct {
     int32_t integral_q20[2]; /* [0] upright, [1] inverted */
+    int32_t airspeed_q8;     /* the protection's filtered airspeed, cm/s in Q8 */
+    uint8_t airspeed_valid;  /* airspeed_q8 holds a reading (0 after reset) */
 } ht_alt_hold_state_t;
 
 /* Check the parameters; HT_HOLD_OK when every field is in range. */
 ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p);
 
-/* Zero both integrators. */
+/* Zero both integrators and forget the filtered airspeed. */
 void ht_alt_hold_reset(ht_alt_hold_state_t *s);
 
 /*
@@ -91,6 +108,16 @@ void ht_alt_hold_reset(ht_alt_hold_state_t *s);
  */
 q16_t ht_alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
                        int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted);
+
+/*
+ * The same step with the airspeed protection (params above): airspeed_cm_s is
+ * the measured airspeed. While the ceiling limits the output the integrator
+ * does not integrate upward (no wind-up against the protection). With
+ * protect_cm_s = 0 it gives exactly ht_alt_hold_step's output.
+ */
+q16_t ht_alt_hold_step_v(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, int32_t target_cm,
+                         int32_t altitude_cm, int32_t climb_cm_s, uint8_t inverted,
+                         int16_t airspeed_cm_s);
 
 /* --- airspeed hold ------------------------------------------------------- */
 

@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-ABI_VERSION = 6
+ABI_VERSION = 7
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
 
@@ -53,11 +53,14 @@ class SilConfig(ctypes.Structure):
             "aoa_trim_inverted_slope")),
         ("waypoint_count", _I),
         ("waypoints", (_D * 3) * MAX_WAYPOINTS),
+        # ABI 7: the altitude hold's airspeed protection (holds.h)
+        *((n, _D) for n in ("alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv_pitch_per_m_s",
+                            "alt_protect_tau_s")),
     ]
 
 
 # Defaults of the ABI-6 flight-mode fields: modes off (the scenario's commands
-# fly the board, as before ABI 6).
+# fly the board, as before ABI 6); and of the ABI-7 fields.
 MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "modes_enabled": 0, "modes_pitch_mode": 0, "nav_law": 0, "nav_loop": 1,
     "rc_loss_ticks": 20, "rc_recover_ticks": 20, "blend_ticks": 20,
@@ -70,6 +73,9 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "aoa_inverted_slope_deg": 0.0, "aoa_trim_normal": 0.0, "aoa_trim_normal_slope": 0.0,
     "aoa_trim_inverted": 0.0, "aoa_trim_inverted_slope": 0.0,
     "waypoint_count": 0, "waypoints": [],
+    # ABI 7: the altitude hold's airspeed protection off (as before ABI 7)
+    "alt_protect_m_s": 0.0, "alt_protect_valid_m_s": 0.0, "alt_kv_pitch_per_m_s": 0.0,
+    "alt_protect_tau_s": 0.0,
 }
 
 

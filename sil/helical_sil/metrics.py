@@ -216,6 +216,76 @@ def fault_segment_metrics(res: RunResult, seg: Segment, idx: np.ndarray,
 # --- end fault campaign ---
 
 
+def air_relative_altitude(res: RunResult, idx: np.ndarray) -> np.ndarray:
+    """Altitude relative to the air mass over the steps idx of a segment: the
+    altitude plus the air's downward displacement since the segment's first
+    step (the down wind integrated at the sim rate, telemetry `air_down_m`).
+    A downdraft that carries the aircraft down leaves it unchanged; climbing
+    or sinking through the air changes it."""
+    tel = res.telemetry
+    air = tel["air_down_m"][idx]
+    return np.asarray(tel["altitude_m"][idx] + (air - air[0]), dtype=float)
+
+
+def unavoidable_sink(air_down_m: np.ndarray, target_m: np.ndarray, climb_capability_m_s: float,
+                     dt_s: float) -> np.ndarray:
+    """How far below its target an ideal aircraft must be at each step: one that
+    starts on the target and climbs through the air at climb_capability_m_s
+    whenever it is below it (and never overshoots). The deficit grows while
+    the air sinks (plus the target rises) faster than the aircraft can climb,
+    and shrinks at the climb capability otherwise (a Lindley recursion):
+        U[k+1] = max(0, U[k] + (air_down[k+1] - air_down[k])
+                             + (target[k+1] - target[k]) - climb_capability * dt)
+    air_down_m: the air's cumulative downward displacement (telemetry
+    `air_down_m`); target_m: the hold's target (NaN where the hold is off:
+    U restarts at 0 there)."""
+    n = air_down_m.size
+    u = np.zeros(n, dtype=float)
+    d_air = np.diff(air_down_m)
+    d_tgt = np.nan_to_num(np.diff(target_m), nan=0.0)
+    on = np.isfinite(target_m)
+    c = climb_capability_m_s * dt_s
+    for k in range(n - 1):
+        u[k + 1] = max(0.0, u[k] + d_air[k] + d_tgt[k] - c) if on[k + 1] and on[k] else 0.0
+    return u
+
+
+def air_mass_metrics(res: RunResult, idx: np.ndarray, steady: np.ndarray) -> dict[str, Any]:
+    """Altitude-hold segment, over its steady part (as altitude_error_max_m):
+    - air_relative_altitude_error_max_m: largest |air-relative altitude (above)
+      - the hold's target| (reported; it grows with the air's displacement
+      even when the hold keeps its altitude exactly, so it is no criterion);
+    - unavoidable_sink_max_m: largest unavoidable_sink (from the run's start,
+      with the scenario's climb_capability_m_s);
+    - altitude_error_net_of_air_max_m: largest of (altitude - target) and
+      (target - altitude - unavoidable sink): the altitude error minus the
+      part no aircraft of that climb capability could have avoided;
+    - air_down_m: how far the air moved down over the segment;
+      wind_down_max_m_s / wind_up_max_m_s: strongest down / up wind."""
+    tel = res.telemetry
+    if "air_down_m" not in tel or not steady.any():
+        return {}
+    h = tel["altitude_m"][idx]
+    target = tel["cmd_altitude_m"][idx]
+    w = tel["wind_down_m_s"][idx]
+    air = tel["air_down_m"][idx]
+    out: dict[str, Any] = {
+        "air_relative_altitude_error_max_m": _f(np.max(np.abs(
+            air_relative_altitude(res, idx)[steady] - target[steady]))),
+        "air_down_m": _f(air[-1] - air[0]),
+        "wind_down_max_m_s": _f(max(0.0, float(np.max(w)))),
+        "wind_up_max_m_s": _f(max(0.0, float(-np.min(w)))),
+    }
+    c = res.scenario.climb_capability_m_s
+    if c is not None:
+        u = unavoidable_sink(tel["air_down_m"], tel["cmd_altitude_m"], c,
+                             1.0 / res.scenario.control_rate_hz)[idx]
+        err = np.maximum(h - target, target - h - u)
+        out["unavoidable_sink_max_m"] = _f(np.max(u[steady]))
+        out["altitude_error_net_of_air_max_m"] = _f(np.max(err[steady]))
+    return out
+
+
 def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     tel = res.telemetry
     sc = res.scenario
@@ -259,6 +329,7 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
         if seg.altitude_hold:
             ha = tel["cmd_altitude_m"][idx][steady]
             out["altitude_error_max_m"] = _f(np.max(np.abs(h[steady] - ha)))
+            out.update(air_mass_metrics(res, idx, steady))
         va = tel["cmd_airspeed_m_s"][idx][steady]
         if np.all(np.isfinite(va)):
             out["airspeed_error_max_m_s"] = _f(np.max(np.abs(v[steady] - va)))

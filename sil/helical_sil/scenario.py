@@ -25,6 +25,7 @@ HOLD_PARAMS = (
     "alt_kp", "alt_ki", "alt_kd", "alt_max_pitch", "alt_max_integral", "alt_max_error_m",
     "alt_integral_band_m",
     "alt_integral_upright", "alt_integral_inverted",
+    "alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv", "alt_protect_tau_s",
     "spd_kp", "spd_ki", "spd_kff_pitch", "spd_max_integral",
     "throttle_min", "throttle_max", "throttle_trim",
 )
@@ -38,6 +39,8 @@ GAIN_DEFAULTS: dict[str, float] = {
     "alt_kp": 0.01, "alt_ki": 0.0, "alt_kd": 0.0, "alt_max_pitch": 0.3,
     "alt_max_integral": 0.2, "alt_max_error_m": 1000.0, "alt_integral_band_m": 10.0,
     "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
+    "alt_protect_m_s": 0.0, "alt_protect_valid_m_s": 0.0, "alt_kv": 0.0,
+    "alt_protect_tau_s": 0.0,
     "spd_kp": 0.1, "spd_ki": 0.02, "spd_kff_pitch": 1.0, "spd_max_integral": 0.5,
     "throttle_min": 0.0, "throttle_max": 1.0,
 }
@@ -58,8 +61,13 @@ SEGMENT_METRICS = (
     # --- fault campaign (issue 7) ---
     "bank_abs_max_deg", "bank_error_max_deg", "tilt_error_max_deg", "airspeed_min_m_s",
     "airspeed_max_m_s", "min_altitude_m",
+    # the air mass (metrics.air_mass_metrics)
+    "air_relative_altitude_error_max_m", "unavoidable_sink_max_m",
+    "altitude_error_net_of_air_max_m", "air_down_m", "wind_down_max_m_s", "wind_up_max_m_s",
     # --- end fault campaign ---
 )
+# metrics computed only with [metrics] climb_capability_m_s
+NEEDS_CLIMB_CAPABILITY = ("unavoidable_sink_max_m", "altitude_error_net_of_air_max_m")
 RUN_METRICS = (
     "max_altitude_loss_m", "surface_saturation_frac", "sideslip_rms_deg",
     "sim_speed_x_realtime", "altitude_error_max_m",
@@ -224,6 +232,9 @@ class Scenario:
     # --- end fault campaign ---
     steady_after_s: float = 8.0
     entry_window_s: float = 6.0
+    # the aircraft's best climb through the air (m/s) for the air-mass metrics
+    # (metrics.unavoidable_sink); None: altitude_error_net_of_air_max_m is not computed
+    climb_capability_m_s: float | None = None
     commands: list[Command] = field(default_factory=list)
     criteria: list[PassCriterion] = field(default_factory=list)
     modes: ModesConfig | None = None  # flight modes: the [[rc]] timeline flies the board
@@ -324,6 +335,10 @@ def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
             out[k] = _num(src, key, v, 0.0, 64.0)
         elif k in ("v_ref", "v_min"):
             out[k] = _num(src, key, v, 1.0, 327.0)
+        elif k in ("alt_protect_m_s", "alt_protect_valid_m_s"):
+            out[k] = _num(src, key, v, 0.0, 327.0)
+        elif k == "alt_protect_tau_s":
+            out[k] = _num(src, key, v, 0.0, 60.0)
         elif k == "max_tilt":
             out[k] = _num(src, key, v, 0.01, 8.0)
         elif k in ("throttle_min", "throttle_max", "throttle_trim", "spd_max_integral"):
@@ -595,11 +610,15 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     _parse_faults(src, doc, sens, sc)  # fault campaign (issue 7)
 
     met = _table(src, "metrics", doc.get("metrics", {}))
-    _check_keys(src, "metrics", met, ("steady_after_s", "entry_window_s"))
+    _check_keys(src, "metrics", met, ("steady_after_s", "entry_window_s",
+                                      "climb_capability_m_s"))
     sc.steady_after_s = _num(src, "metrics.steady_after_s", met.get("steady_after_s", 8.0), 0.0,
                              600.0)
     sc.entry_window_s = _num(src, "metrics.entry_window_s", met.get("entry_window_s", 6.0), 0.5,
                              600.0)
+    if "climb_capability_m_s" in met:
+        sc.climb_capability_m_s = _num(src, "metrics.climb_capability_m_s",
+                                       met["climb_capability_m_s"], 0.0, 100.0)
 
     labels: set[str] = set()
     if "rc" in doc or "modes" in doc:
@@ -666,6 +685,9 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
         seg = _str(src, pre + ".segment", c.get("segment", "run"))
         allowed = RUN_METRICS if seg == "run" else SEGMENT_METRICS
         metric = _str(src, pre + ".metric", c["metric"], allowed)
+        if metric in NEEDS_CLIMB_CAPABILITY and sc.climb_capability_m_s is None:
+            raise ScenarioError(f"{_where(src, pre + '.metric')}: {metric} needs "
+                                "metrics.climb_capability_m_s")
         if seg != "run" and seg not in labels:
             raise ScenarioError(
                 f"{_where(src, pre + '.segment')}: no command has label {seg!r} "

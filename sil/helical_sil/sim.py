@@ -47,6 +47,9 @@ COLUMNS = (
     "cross_track_m", "nav_distance_m", "leg_from_north_m", "leg_from_east_m",
     "turn_target_deg_s", "nav_turn_rate_deg_s", "blend", "aoa_pitch_offset", "aoa_trim",
     "aoa_active",
+    # the air mass (issue 7): total wind (steady + turbulence) at the step, and the
+    # air's vertical displacement since t = 0 (the down wind integrated every sim frame)
+    "wind_north_m_s", "wind_east_m_s", "wind_down_m_s", "air_down_m",
 )
 MODE_NAMES = ("manual", "fbw", "waypoint", "rth")
 MODE_THRESHOLDS_US = (1250, 1750, 2100)  # modes.h defaults (the board uses them)
@@ -189,6 +192,8 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
         "alt_integral_band_m": min(g["alt_integral_band_m"], g["alt_max_error_m"]),
         "alt_integral_upright": g["alt_integral_upright"],
         "alt_integral_inverted": g["alt_integral_inverted"],
+        "alt_protect_m_s": g["alt_protect_m_s"], "alt_protect_valid_m_s": g["alt_protect_valid_m_s"],
+        "alt_kv_pitch_per_m_s": g["alt_kv"], "alt_protect_tau_s": g["alt_protect_tau_s"],
         "spd_throttle_trim": g.get("throttle_trim", trims["throttle"]),
         "spd_throttle_min": g["throttle_min"], "spd_throttle_max": g["throttle_max"],
         "spd_kp_throttle_per_m_s": g["spd_kp"], "spd_ki_throttle_per_m": g["spd_ki"],
@@ -378,6 +383,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     log = np.zeros((steps, ncol), dtype=np.float64)
     fifo: deque[tuple[float, ...]] = deque()
     north = east = 0.0
+    air_down = 0.0
+    dt_sim = 1.0 / sc.sim_rate_hz
     seg_i = 0
     cmd = board.command
     sens = board.sensors
@@ -490,10 +497,14 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             a.nav_distance_m, a.leg_from_north_m, a.leg_from_east_m,
             math.degrees(a.turn_target_rad_s), math.degrees(a.nav_turn_rate_rad_s), a.blend,
             a.aoa_pitch_offset, a.aoa_trim, float(a.aoa_active),
+            fdm["atmosphere/total-wind-north-fps"] * FT, fdm["atmosphere/total-wind-east-fps"] * FT,
+            fdm["atmosphere/total-wind-down-fps"] * FT, air_down,
         )
         for _ in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
+            # rectangle rule at the sim rate on the wind after each frame
+            air_down += fdm["atmosphere/total-wind-down-fps"] * FT * dt_sim
         north += vn * dt_ctl
         east += ve * dt_ctl
         if h < 5.0:
