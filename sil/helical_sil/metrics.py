@@ -286,6 +286,21 @@ def air_mass_metrics(res: RunResult, idx: np.ndarray, steady: np.ndarray) -> dic
     return out
 
 
+def min_altitude_net_of_air(res: RunResult) -> dict[str, Any]:
+    """min_altitude_net_of_air_m: the lowest altitude over the run, each step
+    raised by that step's unavoidable_sink (the scenario's
+    climb_capability_m_s): how low the aircraft went beyond what the air forced
+    on any aircraft of that climb capability. Absent without a climb
+    capability or the air telemetry."""
+    tel = res.telemetry
+    c = res.scenario.climb_capability_m_s
+    if c is None or "air_down_m" not in tel or tel["altitude_m"].size == 0:
+        return {}
+    u = unavoidable_sink(tel["air_down_m"], tel["cmd_altitude_m"], c,
+                         1.0 / res.scenario.control_rate_hz)
+    return {"min_altitude_net_of_air_m": _f(np.min(tel["altitude_m"] + u))}
+
+
 def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     tel = res.telemetry
     sc = res.scenario
@@ -402,6 +417,7 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
     }
     if sc.modes is None:
         run.update(recovery_metrics(res))  # fault campaign (issue 7)
+        run.update(min_altitude_net_of_air(res))
     if sc.modes is not None:
         run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
         run.update(failsafe_metrics(res))

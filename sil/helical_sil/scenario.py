@@ -67,7 +67,8 @@ SEGMENT_METRICS = (
     # --- end fault campaign ---
 )
 # metrics computed only with [metrics] climb_capability_m_s
-NEEDS_CLIMB_CAPABILITY = ("unavoidable_sink_max_m", "altitude_error_net_of_air_max_m")
+NEEDS_CLIMB_CAPABILITY = ("unavoidable_sink_max_m", "altitude_error_net_of_air_max_m",
+                          "min_altitude_net_of_air_m")
 RUN_METRICS = (
     "max_altitude_loss_m", "surface_saturation_frac", "sideslip_rms_deg",
     "sim_speed_x_realtime", "altitude_error_max_m",
@@ -77,7 +78,7 @@ RUN_METRICS = (
     "failsafe_entry_s", "home_distance_end_m", "loiter_radius_error_m",
     # --- fault campaign (issue 7) ---
     "recovery_time_s", "tilt_error_end_deg", "min_altitude_m", "bank_abs_max_deg",
-    "airspeed_min_m_s", "airspeed_max_m_s",
+    "airspeed_min_m_s", "airspeed_max_m_s", "min_altitude_net_of_air_m",
     # --- end fault campaign ---
 )
 

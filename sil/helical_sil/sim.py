@@ -146,6 +146,10 @@ def make_fdm(sc: Scenario) -> jsbsim.FGFDMExec:
     return fdm
 
 
+# The steady wind's ramp-in time at the start of a run (see the loop in run()).
+WIND_RAMP_S = 5.0
+
+
 # --- fault campaign (issue 7) ---
 def _release_upset(fdm: jsbsim.FGFDMExec, sc: Scenario) -> None:
     """After the trim at [initial] (its surface, throttle and pitch-trim settings
@@ -384,6 +388,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     fifo: deque[tuple[float, ...]] = deque()
     north = east = 0.0
     air_down = 0.0
+    steady_wind = any(w != 0.0 for w in (sc.wind_north_m_s, sc.wind_east_m_s, sc.wind_down_m_s))
     dt_sim = 1.0 / sc.sim_rate_hz
     seg_i = 0
     cmd = board.command
@@ -500,6 +505,14 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             fdm["atmosphere/total-wind-north-fps"] * FT, fdm["atmosphere/total-wind-east-fps"] * FT,
             fdm["atmosphere/total-wind-down-fps"] * FT, air_down,
         )
+        if steady_wind:
+            # JSBSim's run_ic and trim reset atmosphere/wind-*-fps, so the
+            # steady wind is applied here, ramped in over WIND_RAMP_S: a step
+            # would hit the trimmed aircraft as a gust of the full wind speed
+            ramp = min(1.0, (t + dt_ctl) / WIND_RAMP_S)
+            fdm["atmosphere/wind-north-fps"] = ramp * sc.wind_north_m_s / FT
+            fdm["atmosphere/wind-east-fps"] = ramp * sc.wind_east_m_s / FT
+            fdm["atmosphere/wind-down-fps"] = ramp * sc.wind_down_m_s / FT
         for _ in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")

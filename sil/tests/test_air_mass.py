@@ -114,6 +114,26 @@ def test_a_stall_in_the_downdraft_is_not_excused() -> None:
     assert out["altitude_error_net_of_air_max_m"] == pytest.approx(7.0 * DT * (n - 1))
 
 
+def test_min_altitude_net_of_air_raises_each_step_by_its_unavoidable_sink() -> None:
+    # 12 m/s down for 20 s, then still air; the aircraft climbs through the
+    # air at 5 m/s, then back up at 5 m/s: its lowest point is all unavoidable
+    n = 1600
+    half = n // 2
+    air = np.concatenate([12.0 * DT * np.arange(half), np.full(n - half, 12.0 * DT * (half - 1))])
+    h = np.concatenate([1500.0 - 7.0 * DT * np.arange(half),
+                        1500.0 - 7.0 * DT * (half - 1) + 5.0 * DT * np.arange(1, n - half + 1)])
+    h = np.minimum(h, 1500.0)
+    out = metrics.min_altitude_net_of_air(_res(h, air))
+    assert out["min_altitude_net_of_air_m"] == pytest.approx(1500.0, abs=1e-6)
+    # sinking 2 m/s faster than the air forces: that part stays
+    h2 = 1500.0 - 14.0 * DT * np.arange(n)
+    air2 = 12.0 * DT * np.arange(n)
+    out2 = metrics.min_altitude_net_of_air(_res(h2, air2))
+    assert out2["min_altitude_net_of_air_m"] == pytest.approx(1500.0 - 7.0 * DT * (n - 1))
+    # no climb capability: no figure
+    assert metrics.min_altitude_net_of_air(_res(h, air, capability=None)) == {}
+
+
 def test_above_the_target_counts_in_full_and_the_steady_mask_applies() -> None:
     n = 400
     h = np.full(n, 1500.0)
@@ -180,6 +200,24 @@ def test_telemetry_logs_the_turbulence_and_integrates_it(tmp_path: Path, board_l
     # calm air (JSBSim's trim leaves a wind of order 1e-14 m/s)
     assert np.allclose(calm["air_down_m"], 0.0, atol=1e-9)
     assert np.allclose(calm["wind_down_m_s"], 0.0, atol=1e-9)
+
+
+def test_the_steady_wind_is_applied_after_the_trim_and_ramped_in(tmp_path: Path,
+                                                                  board_lib: str) -> None:
+    """JSBSim's run_ic and trim reset atmosphere/wind-*-fps: the harness sets
+    the steady wind in its loop, ramped in over WIND_RAMP_S (a step would be a
+    gust of the full wind speed on the trimmed aircraft)."""
+    text = BASE.replace("duration_s = 4", "duration_s = 8")
+    text += "[wind]\nnorth_m_s = -4\neast_m_s = 10\ndown_m_s = 0.5\n"
+    tel = sim.run(load_scenario(_write(tmp_path, text)), board_lib).telemetry
+    t = tel["t_s"]
+    half = int(np.argmin(np.abs(t - sim.WIND_RAMP_S / 2)))
+    assert tel["wind_east_m_s"][half] == pytest.approx(5.0, abs=0.1)
+    late = t >= sim.WIND_RAMP_S
+    assert np.allclose(tel["wind_east_m_s"][late], 10.0, atol=1e-6)
+    assert np.allclose(tel["wind_north_m_s"][late], -4.0, atol=1e-6)
+    assert np.allclose(tel["wind_down_m_s"][late], 0.5, atol=1e-6)
+    assert np.all(np.diff(tel["wind_east_m_s"][~late]) >= 0.0)  # a ramp, no step
 
 
 def test_severe_turbulence_seed8_downdraft_is_beyond_the_climb_and_does_not_stall(
