@@ -469,8 +469,9 @@ void ht_modes_step(const ht_modes_t *m, ht_modes_state_t *st, const ht_modes_inp
         turn_t = q_clamp32(q_add_sat32(o.nav.turn_rate_rad_s, pilot.turn_rate_rad_s),
                            -m->nav.turn_rate_max_rad_s, m->nav.turn_rate_max_rad_s);
         inverted = pilot.inverted;
-        pitch_t = ht_alt_hold_step(&m->alt, &st->alt, o.nav.target_alt_cm, in->alt_cm,
-                                   in->climb_cm_s, inverted);
+        /* with the hold's airspeed protection (off when alt.protect_cm_s = 0) */
+        pitch_t = ht_alt_hold_step_v(&m->alt, &st->alt, o.nav.target_alt_cm, in->alt_cm,
+                                     in->climb_cm_s, inverted, in->airspeed_cm_s);
         speed_hold = 1;
         break;
     case HT_MODE_MANUAL:
