@@ -3,8 +3,9 @@
  *
  * No startup code: the Python driver loads the ELF, zeroes .bss, calls
  * bench_setup once, then calls the measured functions (ht_step, the
- * primitives, bench_step_output, law_step_f32/f64) directly with their
- * arguments in r0-r3 and LR = bench_stop | 1. bench_stop is where the
+ * primitives, bench_step_output, law_step_f32/f64, law_step_q14,
+ * bench_step_output_q14) directly with their arguments in r0-r3 and
+ * LR = bench_stop | 1. bench_stop is where the
  * emulation ends: a mapped address, never executed (the driver stops there),
  * a breakpoint and a branch-to-self in case it is.
  */
@@ -40,13 +41,22 @@ _Static_assert(sizeof(law_input_f64_t) == 80u, "law_input_f64_t layout");
 
 /* Keeps every measured library function in the link (-gc-sections). */
 typedef void (*bench_fn_t)(void);
-__attribute__((used)) const bench_fn_t bench_keep[] = {
-    (bench_fn_t)ht_step,        (bench_fn_t)q14_mul,           (bench_fn_t)q_mul32,
-    (bench_fn_t)q_isqrt32,      (bench_fn_t)q_unit2_q28,       (bench_fn_t)q_unit3_q28,
-    (bench_fn_t)q14_normalize3, (bench_fn_t)law_step_f32,      (bench_fn_t)law_step_f64,
-    (bench_fn_t)bench_step_output, (bench_fn_t)bench_setup};
+__attribute__((used)) const bench_fn_t bench_keep[] = {(bench_fn_t)ht_step,
+                                                       (bench_fn_t)q14_mul,
+                                                       (bench_fn_t)q_mul32,
+                                                       (bench_fn_t)q_isqrt32,
+                                                       (bench_fn_t)q_unit2_q28,
+                                                       (bench_fn_t)q_unit3_q28,
+                                                       (bench_fn_t)q14_normalize3,
+                                                       (bench_fn_t)law_step_f32,
+                                                       (bench_fn_t)law_step_f64,
+                                                       (bench_fn_t)bench_step_output,
+                                                       (bench_fn_t)bench_setup,
+                                                       (bench_fn_t)law_step_q14,
+                                                       (bench_fn_t)bench_step_output_q14};
 
 _Static_assert(offsetof(ht_output_t, tilt_ratio) == 4u, "ht_output_t layout");
 _Static_assert(offsetof(ht_output_t, aileron) == 32u, "ht_output_t layout");
 _Static_assert(offsetof(ht_output_t, flags) == 38u, "ht_output_t layout");
 _Static_assert(sizeof(ht_output_t) == 40u, "ht_output_t layout");
+_Static_assert(sizeof(law_q14_output_t) == 12u, "law_q14_output_t layout");

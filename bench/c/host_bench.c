@@ -5,8 +5,11 @@
  *
  *   host_bench INPUTS dump            one line per input: every ht_output_t
  *                                     field, the pulses, the double law's
- *                                     surfaces (the emulator runs are checked
- *                                     against these)
+ *                                     surfaces, the 16-bit law's outputs and
+ *                                     pulses (the emulator runs are checked
+ *                                     against these), then the c172p set's
+ *                                     surfaces of ht_step, the 16-bit and the
+ *                                     double law (the accuracy table)
  *   host_bench INPUTS time step|step_os REPEATS RUNS
  *                                     RUNS lines: nanoseconds per step of one
  *                                     run of REPEATS passes over the inputs
@@ -91,34 +94,63 @@ static void run_pass(const ht_input_t *v, size_t n, int with_os, unsigned *sink)
     }
 }
 
+static law_input_f64_t to_f64(const ht_input_t *in)
+{
+    law_input_f64_t fin;
+    memset(&fin, 0, sizeof fin);
+    fin.x = in->x / 16384.0;
+    fin.y = in->y / 16384.0;
+    fin.z = in->z / 16384.0;
+    fin.turn_rate = in->turn_rate_rad_s / 2048.0;
+    fin.pitch = in->pitch_ratio / 65536.0;
+    fin.airspeed = in->airspeed_cm_s / 100.0;
+    for (unsigned k = 0; k < 3u; k++) {
+        fin.gyro[k] = in->gyro_rad_s[k] / 2048.0;
+    }
+    fin.inverted = in->inverted ? 1 : 0;
+    return fin;
+}
+
 static int dump(const ht_input_t *v, size_t n)
 {
+    static ht_controller_t ctl_c172p;
+    static law_q14_ctl_t q14_c172p;
+    if (bench_setup_c172p(&ctl_c172p, &q14_c172p) != 0) {
+        return die("bench_setup_c172p failed", NULL);
+    }
     for (size_t i = 0; i < n; i++) {
         bench_step_output(&v[i]);
         const ht_output_t *o = &bench_out;
         printf("%d %ld %d %d %d %d %d %d %d %d %d %d %d %d %d %d %d %u", o->turn_rate_used_rad_s,
                (long)o->tilt_ratio, o->tilt_x, o->tilt_y, o->tilt_z, o->rate_x_rad_s,
                o->rate_y_rad_s, o->rate_z_rad_s, o->roll_dot, o->roll_cross, o->roll_error,
-               o->pitch_error, o->pitch_body_x, o->pitch_body_z, o->aileron, o->elevator,
-               o->rudder, (unsigned)o->flags);
+               o->pitch_error, o->pitch_body_x, o->pitch_body_z, o->aileron, o->elevator, o->rudder,
+               (unsigned)o->flags);
         for (unsigned c = 0; c < 5u; c++) {
             printf(" %u", (unsigned)bench_pulses[c]);
         }
-        law_input_f64_t fin;
-        memset(&fin, 0, sizeof fin);
-        fin.x = v[i].x / 16384.0;
-        fin.y = v[i].y / 16384.0;
-        fin.z = v[i].z / 16384.0;
-        fin.turn_rate = v[i].turn_rate_rad_s / 2048.0;
-        fin.pitch = v[i].pitch_ratio / 65536.0;
-        fin.airspeed = v[i].airspeed_cm_s / 100.0;
-        for (unsigned k = 0; k < 3u; k++) {
-            fin.gyro[k] = v[i].gyro_rad_s[k] / 2048.0;
-        }
-        fin.inverted = v[i].inverted ? 1 : 0;
+        const law_input_f64_t fin = to_f64(&v[i]);
         law_output_f64_t fo;
         law_step_f64(&bench_law_params_f64, &fin, &fo);
-        printf(" %.9f %.9f %.9f\n", fo.aileron, fo.elevator, fo.rudder);
+        printf(" %.9f %.9f %.9f", fo.aileron, fo.elevator, fo.rudder);
+        /* The 16-bit law: its outputs, then its pulses through the same
+         * output stage (the emulator runs are checked against both). */
+        bench_step_output_q14(&v[i]);
+        const law_q14_output_t *q = &bench_q14_out;
+        printf(" %d %d %d %d %d %d", q->aileron, q->elevator, q->rudder, q->tilt_x, q->tilt_y,
+               q->tilt_z);
+        for (unsigned c = 0; c < 5u; c++) {
+            printf(" %u", (unsigned)bench_pulses[c]);
+        }
+        /* The c172p set: ht_step, the 16-bit law and the double law's
+         * surfaces (accuracy only). */
+        ht_output_t oc;
+        ht_step(&ctl_c172p, &v[i], &oc);
+        law_q14_output_t qc;
+        law_step_q14(&q14_c172p, &v[i], &qc);
+        law_step_f64(&bench_law_params_f64_c172p, &fin, &fo);
+        printf(" %d %d %d %d %d %d %.9f %.9f %.9f\n", oc.aileron, oc.elevator, oc.rudder,
+               qc.aileron, qc.elevator, qc.rudder, fo.aileron, fo.elevator, fo.rudder);
     }
     return 0;
 }

@@ -80,9 +80,10 @@ CORES: dict[str, Core] = {
 }
 
 # Workloads measured per step, with their display names.
-STEP_WORKLOADS = ("step", "step_os", "f32", "f64")
+STEP_WORKLOADS = ("step", "step_os", "f32", "f64", "q14", "q14_os")
 WL_NAMES = {"step": "ht_step (fixed)", "step_os": "ht_step + output stage (fixed)",
-            "f32": "float law", "f64": "double law"}
+            "f32": "float law", "f64": "double law", "q14": "16-bit law",
+            "q14_os": "16-bit law + output stage"}
 
 
 class BenchError(Exception):
@@ -109,6 +110,16 @@ INPUT_FMT = "<hhhhihhhhB3x"  # ht_input_t, 24 bytes (checked by _Static_assert)
 F32_FMT = "<9fi"
 F64_FMT = "<9dii"
 OUTPUT_FMT = "<h2xi15hB1x"  # ht_output_t, 40 bytes
+Q14_OUTPUT_FMT = "<6h"  # law_q14_output_t, 12 bytes
+
+# Columns of host_bench's dump (one row per input).
+REF_HT = slice(0, 18)  # every ht_output_t field
+REF_PULSES = slice(18, 23)
+REF_F64 = (23, 24, 25)  # double law surfaces, bench set: aileron, elevator, rudder
+REF_Q14 = slice(26, 32)  # law_q14_output_t: aileron, elevator, rudder, tilt x, y, z
+REF_Q14_PULSES = slice(32, 37)
+REF_C172P = (37, 46)  # ht_step (3), 16-bit law (3), double law (3) surfaces, c172p set
+REF_COLS = 46
 
 
 def q(v: float, one: int, lo: int, hi: int) -> int:
@@ -277,7 +288,7 @@ def build_arm(core: Core, opt: str, outroot: Path) -> ArmBuild:
     bflags = [*STRICT, *flags, "-fno-math-errno", f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
               "-I", str(ROOT / "include"), "-I", str(CDIR), "-fstack-usage"]
     hobjs: list[Path] = []
-    for name in ("bench_common.c", "arm_harness.c", "law_f32.c", "law_f64.c"):
+    for name in ("bench_common.c", "arm_harness.c", "law_f32.c", "law_f64.c", "law_q14.c"):
         obj = outdir / (Path(name).stem + ".o")
         run([ARM_CC, *bflags, "-c", str(CDIR / name), "-o", str(obj)])
         hobjs.append(obj)
@@ -659,6 +670,8 @@ def emulate_config(job: dict[str, Any]) -> dict[str, Any]:
     per: dict[str, dict[str, Any]] = {}
     outputs: list[tuple[int, ...]] = []
     pulses: list[tuple[int, ...]] = []
+    q14_outputs: list[tuple[int, ...]] = []
+    q14_pulses: list[tuple[int, ...]] = []
     freal: dict[str, list[tuple[float, float, float]]] = {"f32": [], "f64": []}
     for wl in workloads:
         insns: list[int] = []
@@ -674,6 +687,15 @@ def emulate_config(job: dict[str, Any]) -> dict[str, Any]:
                 emu.write("bench_in", packed[k])
                 _, n, c = emu.call("bench_step_output", inp)
                 pulses.append(struct.unpack("<5H", emu.read("bench_pulses", 10)))
+            elif wl == "q14":
+                emu.write("bench_in", packed[k])
+                _, n, c = emu.call("law_step_q14", emu.addr("bench_q14_ctl"), inp,
+                                   emu.addr("bench_q14_out"))
+                q14_outputs.append(struct.unpack(Q14_OUTPUT_FMT, emu.read("bench_q14_out", 12)))
+            elif wl == "q14_os":
+                emu.write("bench_in", packed[k])
+                _, n, c = emu.call("bench_step_output_q14", inp)
+                q14_pulses.append(struct.unpack("<5H", emu.read("bench_pulses", 10)))
             else:
                 r = to_real(i)
                 if wl == "f32":
@@ -696,11 +718,13 @@ def emulate_config(job: dict[str, Any]) -> dict[str, Any]:
             "stack": emu.stack_used(),
             "profile": profile_of(emu, dis, len(inputs)),
             "inline": (inline_profile(emu, dis, elf, len(inputs))
-                       if wl in ("step", "step_os") else None),
+                       if wl in ("step", "step_os", "q14") else None),
         }
     res["workloads"] = per
     res["outputs"] = outputs
     res["pulses"] = pulses
+    res["q14_outputs"] = q14_outputs
+    res["q14_pulses"] = q14_pulses
     res["freal"] = freal
 
     prims: dict[str, Any] = {}
@@ -835,7 +859,8 @@ def static_stack(outdir: Path, dis: Disasm) -> dict[str, Any]:
         return own + (max(sub) if sub else 0)
 
     out: dict[str, Any] = {}
-    for root in ("ht_step", "bench_step_output", "law_step_f32", "law_step_f64"):
+    for root in ("ht_step", "bench_step_output", "law_step_f32", "law_step_f64", "law_step_q14",
+                 "bench_step_output_q14"):
         if root in dis.calls:
             unknown.clear()
             out[root] = {"bytes": depth(root, ()), "no_su": sorted(unknown)}
@@ -871,7 +896,7 @@ def build_host(outroot: Path) -> tuple[Path, LibBuild]:
         shutil.rmtree(outdir)
     lib = build_library("gcc", ["-O2", "-g"], outdir / "lib")
     objs = []
-    for name in ("bench_common.c", "law_f32.c", "law_f64.c", "host_bench.c"):
+    for name in ("bench_common.c", "law_f32.c", "law_f64.c", "law_q14.c", "host_bench.c"):
         obj = outdir / (Path(name).stem + ".o")
         run(["gcc", *STRICT, "-O2", "-g", f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
              "-I", str(ROOT / "include"), "-I", str(CDIR), "-c", str(CDIR / name), "-o", str(obj)])
@@ -927,15 +952,26 @@ def check_results(res: dict[str, Any], ref: list[list[str]], n_real: int) -> lis
     probs: list[str] = []
     tag = f"{res['core']} -{res['opt']}"
     for k, o in enumerate(res["outputs"]):
-        want = [int(x) for x in ref[k][:18]]
+        want = [int(x) for x in ref[k][REF_HT]]
         if list(o) != want:
             probs.append(f"{tag}: ht_step output of input {k} differs from the host build: "
                          f"{list(o)} != {want}")
             break
     for k, pl in enumerate(res["pulses"]):
-        want = [int(x) for x in ref[k][18:23]]
+        want = [int(x) for x in ref[k][REF_PULSES]]
         if list(pl) != want:
             probs.append(f"{tag}: pulses of input {k} differ from the host build")
+            break
+    for k, o in enumerate(res["q14_outputs"]):
+        want = [int(x) for x in ref[k][REF_Q14]]
+        if list(o) != want:
+            probs.append(f"{tag}: law_step_q14 output of input {k} differs from the host build: "
+                         f"{list(o)} != {want}")
+            break
+    for k, pl in enumerate(res["q14_pulses"]):
+        want = [int(x) for x in ref[k][REF_Q14_PULSES]]
+        if list(pl) != want:
+            probs.append(f"{tag}: 16-bit law pulses of input {k} differ from the host build")
             break
     for wl in ("f32", "f64"):
         vals = res["freal"][wl]
@@ -953,6 +989,37 @@ def check_results(res: dict[str, Any], ref: list[list[str]], n_real: int) -> lis
     return probs
 
 
+def accuracy(ref: list[list[str]], n_real: int) -> dict[str, Any]:
+    """Worst |surface - double law surface| in Q14 LSB over the realistic
+    steps (the host build; the emulator runs give the same bits), for the
+    library and the 16-bit law, on the bench set and on the c172p set."""
+    c0 = REF_C172P[0]
+    cols = {  # (fixed-law columns, double-law columns), aileron, elevator, rudder
+        "bench": {"step": ((14, 15, 16), REF_F64),
+                  "q14": ((REF_Q14.start, REF_Q14.start + 1, REF_Q14.start + 2), REF_F64)},
+        "c172p": {"step": ((c0, c0 + 1, c0 + 2), (c0 + 6, c0 + 7, c0 + 8)),
+                  "q14": ((c0 + 3, c0 + 4, c0 + 5), (c0 + 6, c0 + 7, c0 + 8))},
+    }
+    out: dict[str, Any] = {}
+    for pset, laws in cols.items():
+        out[pset] = {}
+        for law, (fc, dc) in laws.items():
+            per = [0.0, 0.0, 0.0]
+            over4 = over8 = over_cent = 0
+            for k in range(n_real):
+                row = ref[k]
+                errs = [abs(int(row[f]) - float(row[d]) * 16384.0) for f, d in zip(fc, dc)]
+                for i in range(3):
+                    per[i] = max(per[i], errs[i])
+                over4 += max(errs) > 4.0
+                over8 += max(errs) > 8.0
+                over_cent += max(errs) > 0.01 * 16384.0
+            out[pset][law] = {"worst": max(per), "per_surface": per, "steps_over_4": over4,
+                              "steps_over_8": over8, "steps_over_0.01": over_cent,
+                              "steps": n_real}
+    return out
+
+
 # --------------------------------------------------------------------------
 # Tables
 # --------------------------------------------------------------------------
@@ -965,8 +1032,85 @@ def fmt(v: Optional[float], nd: int = 0) -> str:
     return f"{v:,.{nd}f}".replace(",", " ")
 
 
+def floor_table(results: list[dict[str, Any]], acc: dict[str, Any], n_real: int) -> list[str]:
+    """The 16-bit law (bench/c/law_q14.c) next to the library: instructions
+    and the worst surface error against the double law."""
+    L: list[str] = []
+    L.append("### The floor: a 16-bit law (int16 values, int32 intermediates)")
+    L.append("")
+    L.append("`bench/c/law_q14.c`: the same law with Q14 int16 values, Q11 rates, Q12 gains, "
+             "int32 intermediates and no 64-bit product; one division (v_ref / S), one "
+             "table-and-Newton reciprocal square root (up to three calls). Instructions per "
+             "step (min / **median** / max over all inputs):")
+    L.append("")
+    L.append("| core | opt | ht_step | 16-bit law | ht_step / 16-bit | ht_step + output stage "
+             "| 16-bit law + output stage |")
+    L.append("| --- | --- | --- | --- | --- | --- | --- |")
+    for r in results:
+        w = r["workloads"]
+
+        def cell(name: str) -> str:
+            if name not in w:
+                return "n/a"
+            st = w[name]["all"]
+            return f"{fmt(st['mn'])} / **{fmt(st['med'])}** / {fmt(st['mx'])}"
+
+        ratio = "-"
+        if "step" in w and "q14" in w:
+            ratio = f"{w['step']['all']['med'] / w['q14']['all']['med']:.2f}"
+        L.append(f"| {r['core']} | -{r['opt']} | {cell('step')} | {cell('q14')} | {ratio} | "
+                 f"{cell('step_os')} | {cell('q14_os')} |")
+    L.append("")
+    by = {(r["core"], r["opt"]): r["workloads"] for r in results}
+
+    def tgt(core: str, wl: str, limit: float) -> str:
+        w = by.get((core, "O2"))
+        if not w or wl not in w:
+            return "not measured"
+        v = w[wl]["all"]["med"]
+        return f"{fmt(v)} ({'met' if v <= limit else 'missed'})"
+
+    def soft(wl: str) -> str:
+        w = by.get(("M0", "O2"))
+        if not w or "f32" not in w or wl not in w:
+            return "not measured"
+        rr = w["f32"]["all"]["med"] / w[wl]["all"]["med"]
+        return f"{rr:.2f} ({'met' if rr >= 8 else 'missed'})"
+
+    L.append("| target of issue 6 (medians, -O2) | ht_step | 16-bit law |")
+    L.append("| --- | --- | --- |")
+    L.append(f"| M4 step + output stage <= 600 | {tgt('M4', 'step_os', 600)} | "
+             f"{tgt('M4', 'q14_os', 600)} |")
+    L.append(f"| M0 step + output stage <= 1 500 | {tgt('M0', 'step_os', 1500)} | "
+             f"{tgt('M0', 'q14_os', 1500)} |")
+    L.append(f"| M0 soft float / (step + output) >= 8 | {soft('step_os')} | {soft('q14_os')} |")
+    L.append("")
+    if acc:
+        def acell(a: dict[str, Any]) -> str:
+            ps = " / ".join(f"{x:.2f}" for x in a["per_surface"])
+            return (f"**{a['worst']:.2f}** ({ps}); {a['steps_over_4']} > 4 LSB, "
+                    f"{a['steps_over_8']} > 8 LSB")
+
+        L.append(f"Worst \|surface - double law surface\| in Q14 LSB over the {n_real} "
+                 "realistic steps (aileron / elevator / rudder; steps with a surface off by more "
+                 "than 4 and 8 LSB). Bench set: the parameters above (effective gains up to "
+                 "2.5 x 15/5 = 7.5). c172p scheduled: kp aileron/elevator/rudder 3/6/0.3, kff "
+                 "0/1/0.5, kd 0.5/1/1, v_ref 50 m/s, v_min 10 m/s, schedule on, max_tilt 4 "
+                 "(effective gains up to 6 x 50/10 = 30). Library contract <= 2 LSB; issue 6 "
+                 "target <= 8 LSB.")
+        L.append("")
+        L.append("| law | bench set | c172p scheduled |")
+        L.append("| --- | --- | --- |")
+        L.append(f"| ht_step (Q28 internal, exact 32x32->64 products) | "
+                 f"{acell(acc['bench']['step'])} | {acell(acc['c172p']['step'])} |")
+        L.append(f"| 16-bit law (int16 values, int32 intermediates) | "
+                 f"{acell(acc['bench']['q14'])} | {acell(acc['c172p']['q14'])} |")
+        L.append("")
+    return L
+
+
 def tables(results: list[dict[str, Any]], host: dict[str, Any], meta: dict[str, Any],
-           fps: dict[str, dict[str, Any]]) -> str:
+           fps: dict[str, dict[str, Any]], acc: Optional[dict[str, Any]] = None) -> str:
     L: list[str] = []
     order = {c: i for i, c in enumerate(CORES)}
     results = sorted(results, key=lambda r: (order[r["core"]], r["opt"] != "O2", r["opt"]))
@@ -1026,6 +1170,7 @@ def tables(results: list[dict[str, Any]], host: dict[str, Any], meta: dict[str, 
     L.append("| anchors (issue 6): MatrixPilot integer step 980 (M4) / 4 608 (M0); float law "
              "223 (M4F), 5 582 (M4 soft), 12 401 (M0) | | |")
     L.append("")
+    L += floor_table(results, acc or {}, meta["n_real"])
     m4f = [r for r in results if r["core"] == "M4F"]
     if m4f:
         L.append("### Cortex-M4F cycles (cycle model of bench/README.md; median per step)")
@@ -1127,9 +1272,9 @@ def profile_tables(results: list[dict[str, Any]], top: int, opt: str) -> str:
                 L.append("Instruction mix per step: " + ", ".join(
                     f"{row['name']} {row['insns_per_step']:.0f}" for row in inl["mix"][:16]))
                 L.append("")
-    L.append("#### Where the float and double laws spend (instructions / step, top 6)")
+    L.append("#### Where the float, double and 16-bit laws spend (instructions / step, top 6)")
     L.append("")
-    for wl in ("f32", "f64"):
+    for wl in ("f32", "f64", "q14"):
         for r in results:
             if r["opt"] != opt or wl not in r["workloads"]:
                 continue
@@ -1228,8 +1373,16 @@ def main(argv: Optional[list[str]] = None) -> int:
         log("host build")
         exe, hlib = build_host(out)
         ref = host_dump(exe, inputs_bin)
-        if len(ref) != len(inputs):
-            raise BenchError("host dump has the wrong number of rows")
+        if len(ref) != len(inputs) or any(len(row) != REF_COLS for row in ref):
+            raise BenchError("host dump has the wrong number of rows or columns")
+        acc = accuracy(ref, n_real)
+        # Breakage, like the float laws' check: the 16-bit law must stay
+        # within 0.01 of the double law on >= 99 % of the realistic steps.
+        for pset, laws in acc.items():
+            bad = laws["q14"]["steps_over_0.01"]
+            if bad > max(1, n_real // 100):
+                problems.append(f"the 16-bit law differs from the double law by > 0.01 on {bad} "
+                                f"of {n_real} realistic steps ({pset} set)")
         if hlib.failed:
             notes.append("not built (host): " + "; ".join(f"{k}: {v}" for k, v in hlib.failed.items()))
 
@@ -1279,11 +1432,12 @@ def main(argv: Optional[list[str]] = None) -> int:
             "host_cc": run(["gcc", "--version"]).stdout.splitlines()[0],
             "n_real": n_real, "n_edge": n_edge, "seed": args.seed, "quick": quick,
         }
-        text = tables(results, host, meta, fps)
+        text = tables(results, host, meta, fps, acc)
         prof = profile_tables(results, args.top, opts[0])
         (out / "results.json").write_text(json.dumps(
-            {"meta": meta, "host": host, "footprint": fps,
-             "results": [{k: v for k, v in r.items() if k not in ("outputs", "pulses", "freal")}
+            {"meta": meta, "host": host, "footprint": fps, "accuracy": acc,
+             "results": [{k: v for k, v in r.items()
+                          if k not in ("outputs", "pulses", "freal", "q14_outputs", "q14_pulses")}
                          for r in results]}, indent=1))
         (out / "table.md").write_text(text + "\n")
         (out / "profile.md").write_text(prof + "\n")
