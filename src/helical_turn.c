@@ -24,9 +24,10 @@
 
 #include "q_inline.h"
 
-/* 2^35 * 32 / 980.665: (Q11 rad/s * cm/s) -> Q16 ratio, shift 35. */
+/* 2^35 * 32 / 980.665: (Q11 rad/s * cm/s) -> Q16 ratio with a shift of 35,
+ * Q24 with a shift of 27. */
 #define RATIO_FROM_OMEGA_S 1121189833L
-#define RATIO_SHIFT        35u
+#define RATIO_Q24_SHIFT    27u
 
 #define Q28_ONE ((int32_t)0x10000000) /* 2^28 */
 
@@ -57,10 +58,14 @@ static int32_t sign_unit_q28(int32_t v)
     return (v >= 0) ? Q28_ONE : -Q28_ONE; /* sign(0) = +1 */
 }
 
-/* The turn rate and tilt ratio after the tilt limit (step 1). */
+/* The turn rate and tilt ratio after the tilt limit (step 1). The ratio is
+ * carried in Q24 into the target tilt: its Q16 rounding (7.6e-6) would reach
+ * the roll error unchanged and the aileron through the largest scheduled
+ * gains (30 x 0.125 LSB). */
 typedef struct {
     int32_t omega_q20;
-    q16_t ratio_q16;
+    int32_t ratio_q24; /* |.| <= max_tilt <= 8 after the limit */
+    q16_t ratio_q16;   /* the output's rounding of it */
 } turn_t;
 
 /* 1/S, for the tilt limit and the airspeed scales: 1/S = inv_q30 * 2^-(30 + exp). */
@@ -74,14 +79,19 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
 {
     turn_t t;
     int32_t omega_times_s = (int32_t)omega_q11 * s_cm_s; /* |.| <= 2^30 */
-    t.ratio_q16 = qi_mul32_fit(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_SHIFT);
+    /* saturates beyond 128, far past any max_tilt (<= 8) */
+    t.ratio_q24 = qi_mul32(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_Q24_SHIFT);
     t.omega_q20 = (int32_t)omega_q11 * 512;
-    if (t.ratio_q16 > ctl->max_tilt || t.ratio_q16 < -ctl->max_tilt) {
+    const int32_t max_q24 = ctl->max_tilt * 256; /* <= 2^27 */
+    if (t.ratio_q24 > max_q24 || t.ratio_q24 < -max_q24) {
         /* max_tilt * g / S: Q16 * Q30 * 2^-(30 + exp) -> Q20 */
         int32_t omega_max_q20 = qi_mul32_fit(ctl->max_tilt_g_q16, inv_s.inv_q30, 26u + inv_s.exp);
         *flags |= HT_F_TILT_LIMITED;
-        t.ratio_q16 = (t.ratio_q16 > 0) ? ctl->max_tilt : -ctl->max_tilt;
+        t.ratio_q24 = (t.ratio_q24 > 0) ? max_q24 : -max_q24;
+        t.ratio_q16 = (t.ratio_q24 > 0) ? ctl->max_tilt : -ctl->max_tilt;
         t.omega_q20 = (omega_q11 > 0) ? omega_max_q20 : -omega_max_q20;
+    } else {
+        t.ratio_q16 = qi_rshift_round(t.ratio_q24, 8u);
     }
     return t;
 }
@@ -112,6 +122,15 @@ static int32_t inv_hypot1_q28(int32_t v_q16)
     return inv_hypot1_from_sq_q24(qi_mul32_fit(v_q16 * 32, v_q16 * 16, 17u));
 }
 
+/* The same for a Q24 v with |v| <= 8 (2^27): v^2 / 2^24 <= 2^30. */
+static int32_t inv_hypot1_q24_q28(int32_t v_q24)
+{
+    if (v_q24 == 0) {
+        return Q28_ONE;
+    }
+    return inv_hypot1_from_sq_q24(qi_mul32_fit(v_q24, v_q24, 24u));
+}
+
 /* Eq. 6's pitch pair for |p| > 8 (beyond 83 degrees, up to any int32):
  * with q = 1/p (|q| < 1/8, the reciprocal the airspeed already uses),
  * 1/sqrt(1 + p^2) = |q| h and p/sqrt(1 + p^2) = sign(p) h, h = 1/sqrt(1 + q^2):
@@ -140,7 +159,7 @@ typedef struct {
     int32_t t_q28;
 } target_t;
 
-static target_t target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted)
+static target_t target_tilt(int32_t ratio_q24, q16_t pitch_q16, uint8_t inverted)
 {
     target_t tg;
     int32_t c2;
@@ -150,12 +169,12 @@ static target_t target_tilt(q16_t ratio_q16, q16_t pitch_q16, uint8_t inverted)
     } else {
         tg.y = steep_pitch_q28(pitch_q16, &c2);
     }
-    const int32_t c1 = inv_hypot1_q28(ratio_q16); /* |ratio| <= max_tilt <= 8 */
+    const int32_t c1 = inv_hypot1_q24_q28(ratio_q24); /* |ratio| <= max_tilt <= 8 */
     int32_t c12 = c2;
     if (c1 != Q28_ONE) {
         c12 = (c2 == Q28_ONE) ? c1 : qi_mul32_fit(c1, c2, 28u);
     }
-    const int32_t x = -qi_mul32_fit(ratio_q16, c12, 16u); /* |r * c1| < 1 */
+    const int32_t x = -qi_mul32_fit(ratio_q24, c12, 24u); /* |r * c1| < 1 */
     tg.x = (inverted != 0u) ? -x : x;
     tg.z = (inverted != 0u) ? -c12 : c12;
     tg.t_q28 = c2;
@@ -329,7 +348,7 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     turn_t turn = limit_turn(ctl, in->turn_rate_rad_s, s_cm_s, inv_s, &flags);
 
     /* 2-3. Target tilt. */
-    const target_t tg = target_tilt(turn.ratio_q16, in->pitch_ratio, in->inverted);
+    const target_t tg = target_tilt(turn.ratio_q24, in->pitch_ratio, in->inverted);
 
     /* 4. Target body rate from the actual tilt (Eq. 3), Q20 rad/s. */
     const q14_t row[3] = {in->x, in->y, in->z};
