@@ -102,7 +102,8 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
 static int32_t inv_hypot1_from_sq_q24(int32_t sq_q24)
 {
     int exp2;
-    const int32_t y = qi_rsqrt_norm_q28((uint32_t)(sq_q24 + (int32_t)0x01000000), &exp2);
+    const int32_t one_plus_sq_q24 = sq_q24 + (int32_t)0x01000000; /* <= 2^30 + 2^24 */
+    const int32_t y = qi_rsqrt_norm_q28((uint32_t)one_plus_sq_q24, &exp2);
     /* 1/sqrt((1 + v^2) / 16) = y * 2^exp2, so c = y * 2^(exp2 - 2); exp2 in [-1, 2] */
     const int down = 2 - exp2;
     return (down <= 0) ? y : qi_rshift_round(y, (unsigned)down);

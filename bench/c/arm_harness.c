@@ -41,19 +41,15 @@ _Static_assert(sizeof(law_input_f64_t) == 80u, "law_input_f64_t layout");
 
 /* Keeps every measured library function in the link (-gc-sections). */
 typedef void (*bench_fn_t)(void);
-__attribute__((used)) const bench_fn_t bench_keep[] = {(bench_fn_t)ht_step,
-                                                       (bench_fn_t)q14_mul,
-                                                       (bench_fn_t)q_mul32,
-                                                       (bench_fn_t)q_isqrt32,
-                                                       (bench_fn_t)q_unit2_q28,
-                                                       (bench_fn_t)q_unit3_q28,
-                                                       (bench_fn_t)q14_normalize3,
-                                                       (bench_fn_t)law_step_f32,
-                                                       (bench_fn_t)law_step_f64,
-                                                       (bench_fn_t)bench_step_output,
-                                                       (bench_fn_t)bench_setup,
-                                                       (bench_fn_t)law_step_q14,
-                                                       (bench_fn_t)bench_step_output_q14};
+__attribute__((used))
+const bench_fn_t bench_keep[] = {(bench_fn_t)ht_step,           (bench_fn_t)q14_mul,
+                                 (bench_fn_t)q_mul32,           (bench_fn_t)q_mul32_fit,
+                                 (bench_fn_t)q_rsqrt_norm_q28,  (bench_fn_t)q_recip_q30,
+                                 (bench_fn_t)q_isqrt32,         (bench_fn_t)q_unit2_q28,
+                                 (bench_fn_t)q_unit3_q28,       (bench_fn_t)q14_normalize3,
+                                 (bench_fn_t)law_step_f32,      (bench_fn_t)law_step_f64,
+                                 (bench_fn_t)bench_step_output, (bench_fn_t)bench_setup,
+                                 (bench_fn_t)law_step_q14,      (bench_fn_t)bench_step_output_q14};
 
 _Static_assert(offsetof(ht_output_t, tilt_ratio) == 4u, "ht_output_t layout");
 _Static_assert(offsetof(ht_output_t, aileron) == 32u, "ht_output_t layout");

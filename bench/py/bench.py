@@ -215,7 +215,13 @@ def primitive_inputs(n: int, seed: int) -> dict[str, list[tuple[int, ...]]]:
     shifts = (14, 16, 20, 24, 28, 30, 32, 35)
     d["q_mul32"] = [(rng.randint(-(2 ** 30), 2 ** 30), rng.randint(-(2 ** 30), 2 ** 30),
                      rng.choice(shifts)) for _ in range(n)]
+    # the step's own form: the caller's proof that the result fits (|a|, |b| <= 2^27)
+    d["q_mul32_fit"] = [(rng.randint(-(2 ** 27), 2 ** 27), rng.randint(-(2 ** 27), 2 ** 27),
+                         rng.choice((24, 28, 30, 32, 35))) for _ in range(n)]
     d["q_isqrt32"] = [(int(2 ** rng.uniform(0, 32)) & 0xFFFFFFFF,) for _ in range(n)]
+    d["q_rsqrt_norm_q28"] = [(max(1, int(2 ** rng.uniform(0, 32)) & 0xFFFFFFFF),)
+                             for _ in range(n)]
+    d["q_recip_q30"] = [(max(1, int(2 ** rng.uniform(0, 31)) & 0x7FFFFFFF),) for _ in range(n)]
     d["q_unit2_q28"] = [(rng.randint(-(2 ** 20), 2 ** 20), rng.randint(-(2 ** 20), 2 ** 20))
                         for _ in range(n)]
     d["q_unit3_q28"] = [tuple(rng.randint(-(2 ** 28), 2 ** 28) for _ in range(3)) for _ in range(n)]
@@ -223,7 +229,8 @@ def primitive_inputs(n: int, seed: int) -> dict[str, list[tuple[int, ...]]]:
     return d
 
 
-PRIMITIVES = ("q14_mul", "q_mul32", "q_isqrt32", "q_unit2_q28", "q_unit3_q28", "q14_normalize3")
+PRIMITIVES = ("q14_mul", "q_mul32", "q_mul32_fit", "q_isqrt32", "q_rsqrt_norm_q28", "q_recip_q30",
+              "q_unit2_q28", "q_unit3_q28", "q14_normalize3")
 
 
 # --------------------------------------------------------------------------
@@ -733,8 +740,10 @@ def emulate_config(job: dict[str, Any]) -> dict[str, Any]:
     for name, args_list in job["prims"].items():
         counts: list[int] = []
         for a in args_list:
-            if name in ("q14_mul", "q_mul32", "q_isqrt32"):
+            if name in ("q14_mul", "q_mul32", "q_mul32_fit", "q_isqrt32"):
                 _, n, _ = emu.call(name, *a)
+            elif name in ("q_rsqrt_norm_q28", "q_recip_q30"):  # (x, &exponent)
+                _, n, _ = emu.call(name, a[0], scratch_out)
             elif name == "q_unit2_q28":
                 _, n, _ = emu.call(name, a[0], a[1], scratch_out, scratch_out + 4)
             elif name == "q_unit3_q28":
