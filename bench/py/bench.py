@@ -960,28 +960,18 @@ def check_results(res: dict[str, Any], ref: list[list[str]], n_real: int) -> lis
     the fixed law on the realistic steps. Returns problems (breakage)."""
     probs: list[str] = []
     tag = f"{res['core']} -{res['opt']}"
-    for k, o in enumerate(res["outputs"]):
-        want = [int(x) for x in ref[k][REF_HT]]
-        if list(o) != want:
-            probs.append(f"{tag}: ht_step output of input {k} differs from the host build: "
-                         f"{list(o)} != {want}")
-            break
-    for k, pl in enumerate(res["pulses"]):
-        want = [int(x) for x in ref[k][REF_PULSES]]
-        if list(pl) != want:
-            probs.append(f"{tag}: pulses of input {k} differ from the host build")
-            break
-    for k, o in enumerate(res["q14_outputs"]):
-        want = [int(x) for x in ref[k][REF_Q14]]
-        if list(o) != want:
-            probs.append(f"{tag}: law_step_q14 output of input {k} differs from the host build: "
-                         f"{list(o)} != {want}")
-            break
-    for k, pl in enumerate(res["q14_pulses"]):
-        want = [int(x) for x in ref[k][REF_Q14_PULSES]]
-        if list(pl) != want:
-            probs.append(f"{tag}: 16-bit law pulses of input {k} differ from the host build")
-            break
+    # (emulated results, host reference columns, what they are)
+    bit_checks = ((res["outputs"], REF_HT, "ht_step output"),
+                  (res["pulses"], REF_PULSES, "pulses"),
+                  (res["q14_outputs"], REF_Q14, "law_step_q14 output"),
+                  (res["q14_pulses"], REF_Q14_PULSES, "16-bit law pulses"))
+    for got_list, cols, what in bit_checks:
+        for k, got in enumerate(got_list):
+            want = [int(x) for x in ref[k][cols]]
+            if list(got) != want:
+                probs.append(f"{tag}: {what} of input {k} differs from the host build: "
+                             f"{list(got)} != {want}")
+                break
     for wl in ("f32", "f64"):
         vals = res["freal"][wl]
         if not vals:
@@ -1033,6 +1023,14 @@ def accuracy(ref: list[list[str]], n_real: int) -> dict[str, Any]:
 # Tables
 # --------------------------------------------------------------------------
 
+def workload_cell(w: dict[str, Any], name: str) -> str:
+    """min / **median** / max instructions of one workload, or n/a."""
+    if name not in w:
+        return "n/a"
+    st = w[name]["all"]
+    return f"{fmt(st['mn'])} / **{fmt(st['med'])}** / {fmt(st['mx'])}"
+
+
 def fmt(v: Optional[float], nd: int = 0) -> str:
     if v is None:
         return "-"
@@ -1059,10 +1057,7 @@ def floor_table(results: list[dict[str, Any]], acc: dict[str, Any], n_real: int)
         w = r["workloads"]
 
         def cell(name: str) -> str:
-            if name not in w:
-                return "n/a"
-            st = w[name]["all"]
-            return f"{fmt(st['mn'])} / **{fmt(st['med'])}** / {fmt(st['mx'])}"
+            return workload_cell(w, name)
 
         ratio = "-"
         if "step" in w and "q14" in w:
@@ -1137,10 +1132,7 @@ def tables(results: list[dict[str, Any]], host: dict[str, Any], meta: dict[str, 
         w = r["workloads"]
 
         def cell(name: str) -> str:
-            if name not in w:
-                return "n/a"
-            s = w[name]["all"]
-            return f"{fmt(s['mn'])} / **{fmt(s['med'])}** / {fmt(s['mx'])}"
+            return workload_cell(w, name)
 
         def ratio(a: str, b: str) -> str:
             if a not in w or b not in w:
