@@ -130,6 +130,10 @@ static void cfg_alt(hil_fw_t *h, const uint8_t *p)
     a->rate_hz = hil_get_u16(&p[28]);
     h->alt_integral_q20[0] = hil_get_i32(&p[30]);
     h->alt_integral_q20[1] = hil_get_i32(&p[34]);
+    a->protect_cm_s = hil_get_i32(&p[38]);
+    a->protect_valid_cm_s = hil_get_i32(&p[42]);
+    a->kv_pitch_per_m_s = hil_get_i32(&p[46]);
+    a->protect_tau_ms = hil_get_u16(&p[50]);
     h->have |= HAVE_ALT;
 }
 
@@ -240,8 +244,9 @@ void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
      * orientation (holds.h) */
     q16_t pitch = in->pitch_ratio;
     if ((in->flags & HIL_SF_ALTITUDE_HOLD) != 0u) {
-        pitch = ht_alt_hold_step(&h->alt, &h->alt_state, in->altitude_cmd_cm, in->altitude_cm,
-                                 in->climb_cm_s, (in->imu.down_q14[2] < 0) ? 1u : 0u);
+        pitch = ht_alt_hold_step_v(&h->alt, &h->alt_state, in->altitude_cmd_cm, in->altitude_cm,
+                                   in->climb_cm_s, (in->imu.down_q14[2] < 0) ? 1u : 0u,
+                                   in->imu.airspeed_cm_s);
     }
     /* nose-low inverted upset: unload, roll upright, then pull (upset_guard.h) */
     pitch = ht_upset_guard_step(&h->ug, &h->ug_state, in->imu.down_q14[0], in->imu.down_q14[1],

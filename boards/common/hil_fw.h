@@ -4,7 +4,7 @@
  * frame, and the answer with the pulses read back from the timer.
  *
  * The control step is the SIL host board's integer step (boards/sil,
- * sil_fw_step) call for call: ht_alt_hold_step -> ht_speed_hold_step ->
+ * sil_fw_step) call for call: ht_alt_hold_step_v -> ht_speed_hold_step ->
  * ht_step (one controller per pitch method) -> os_compute, on the same
  * fixed-point inputs; the simulator sends those inputs already converted, so
  * a PIL run and a SIL run agree bit for bit (tests/test_hil_fw.c checks the
@@ -27,7 +27,7 @@
 #include "helical/output_stage.h"
 #include "helical/upset_guard.h"
 
-#define HIL_PROTOCOL_VERSION 1u
+#define HIL_PROTOCOL_VERSION 2u /* 2: CFG_ALT carries the airspeed protection */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -46,7 +46,7 @@
 
 /* Payload lengths */
 #define HIL_LEN_CFG_LAW 49u
-#define HIL_LEN_CFG_ALT 38u
+#define HIL_LEN_CFG_ALT 52u
 #define HIL_LEN_CFG_SPD 22u
 #define HIL_LEN_CFG_OUT 58u
 #define HIL_LEN_SENSORS 41u

@@ -43,7 +43,7 @@ from helical_sil.board import Board, BoardError, SilActuators
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2  # 2: CFG_ALT carries the airspeed protection
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_SENSORS = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x20)
@@ -203,6 +203,11 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
     alt += rate.to_bytes(2, "little")
     for k in ("alt_integral_upright", "alt_integral_inverted"):
         alt += to_fixed(c[k], 1048576.0, *I32).to_bytes(4, "little", signed=True)
+    # the airspeed protection (protocol 2), as sil_board_configure converts it
+    alt += cm32(c["alt_protect_m_s"]).to_bytes(4, "little", signed=True)
+    alt += cm32(c["alt_protect_valid_m_s"]).to_bytes(4, "little", signed=True)
+    alt += q16(c["alt_kv_pitch_per_m_s"]).to_bytes(4, "little", signed=True)
+    alt += _llround(c["alt_protect_tau_s"] * 1000.0).to_bytes(2, "little")  # range-checked: <= 60 s
     spd = b"".join(q14(c[k]).to_bytes(2, "little", signed=True) for k in (
         "spd_throttle_trim", "spd_throttle_min", "spd_throttle_max"))
     spd += b"".join(q16(c[k]).to_bytes(4, "little", signed=True) for k in (
@@ -216,7 +221,7 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
         out += ch["trim_us"].to_bytes(2, "little", signed=True)
         for k in ("travel_us", "min_us", "max_us", "failsafe_us"):
             out += ch[k].to_bytes(2, "little")
-    assert (len(law), len(alt), len(spd), len(out)) == (49, 38, 22, 58)
+    assert (len(law), len(alt), len(spd), len(out)) == (49, 52, 22, 58)
     return [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
             encode(ID_CFG_OUT, out)]
 

@@ -69,10 +69,11 @@ def test_config_frames_have_the_documented_lengths() -> None:
         "alt_integral_upright", "alt_integral_inverted", "spd_throttle_trim", "spd_throttle_min",
         "spd_throttle_max", "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m",
         "spd_kff_throttle_per_pitch", "spd_max_integral_throttle", "trim_aileron",
-        "trim_elevator", "trim_rudder")}
+        "trim_elevator", "trim_rudder", "alt_protect_m_s", "alt_protect_valid_m_s",
+        "alt_kv_pitch_per_m_s", "alt_protect_tau_s")}
     cfg.update(schedule=1, control_rate_hz=40)
     frames = pil.config_frames(cfg)
-    assert [f[2] for f in frames] == [49, 38, 22, 58]
+    assert [f[2] for f in frames] == [49, 52, 22, 58]
     assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13]
 
 

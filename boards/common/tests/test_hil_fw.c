@@ -111,6 +111,12 @@ static sil_config_t config(void)
     c.alt_integral_band_m = 20.0;
     c.alt_integral_upright = 0.01;
     c.alt_integral_inverted = -0.5; /* beyond max_integral: both boards clamp it */
+    /* the airspeed protection on (protocol 2), near the T-37's cruise so the
+     * steps below reach it */
+    c.alt_protect_m_s = 100.0;
+    c.alt_protect_valid_m_s = 30.0;
+    c.alt_kv_pitch_per_m_s = 0.03;
+    c.alt_protect_tau_s = 1.0;
     c.spd_throttle_trim = 0.55;
     c.spd_throttle_min = 0.05;
     c.spd_throttle_max = 1.0;
@@ -158,6 +164,10 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
     hil_put_u16(&p[28], (uint16_t)c->control_rate_hz);
     put32(&p[30], (int32_t)llround(c->alt_integral_upright * 1048576.0));
     put32(&p[34], (int32_t)llround(c->alt_integral_inverted * 1048576.0));
+    put32(&p[38], (int32_t)llround(c->alt_protect_m_s * 100.0));
+    put32(&p[42], (int32_t)llround(c->alt_protect_valid_m_s * 100.0));
+    put32(&p[46], q16(c->alt_kv_pitch_per_m_s));
+    hil_put_u16(&p[50], (uint16_t)llround(c->alt_protect_tau_s * 1000.0));
     push_frame(HIL_ID_CFG_ALT, p, HIL_LEN_CFG_ALT);
 
     hil_put_i16(&p[0], (int16_t)llround(c->spd_throttle_trim * 16384.0));
