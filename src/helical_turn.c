@@ -101,29 +101,18 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
  * root comes out 4 times too large. */
 static int32_t inv_hypot1_from_sq_q24(int32_t sq_q24)
 {
-    int exp2;
     const int32_t one_plus_sq_q24 = sq_q24 + (int32_t)0x01000000; /* <= 2^30 + 2^24 */
-    const int32_t y = qi_rsqrt_norm_q28((uint32_t)one_plus_sq_q24, &exp2);
+    const qi_rsqrt_t r = qi_rsqrt_norm_q28((uint32_t)one_plus_sq_q24);
     /* 1/sqrt((1 + v^2) / 16) = y * 2^exp2, so c = y * 2^(exp2 - 2); exp2 in [-1, 2] */
-    const int down = 2 - exp2;
-    return (down <= 0) ? y : qi_rshift_round(y, (unsigned)down);
+    const int down = 2 - r.exp2;
+    return (down <= 0) ? r.y_q28 : qi_rshift_round(r.y_q28, (unsigned)down);
 }
 
-/* c = 1/sqrt(1 + v^2) in Q28 for a Q16 v with |v| <= 8 (2^19). v == 0 gives
- * exactly 1 without the work. */
+/* Pitch ratios up to 8 take the fast path of Eq. 6. */
 #define UNIT_ARG_MAX_Q16 ((int32_t)0x80000) /* 8 in Q16 */
 
-static int32_t inv_hypot1_q28(int32_t v_q16)
-{
-    if (v_q16 == 0) {
-        return Q28_ONE;
-    }
-    /* v^2 / 2^8 as (32 v)(16 v) / 2^17: the same bits, and a shift the
-     * partial-product form handles in its short path */
-    return inv_hypot1_from_sq_q24(qi_mul32_fit(v_q16 * 32, v_q16 * 16, 17u));
-}
-
-/* The same for a Q24 v with |v| <= 8 (2^27): v^2 / 2^24 <= 2^30. */
+/* c = 1/sqrt(1 + v^2) in Q28 for a Q24 v with |v| <= 8 (2^27): v^2 / 2^24 <=
+ * 2^30. v == 0 gives exactly 1 without the work. */
 static int32_t inv_hypot1_q24_q28(int32_t v_q24)
 {
     if (v_q24 == 0) {
@@ -165,7 +154,7 @@ static target_t target_tilt(int32_t ratio_q24, q16_t pitch_q16, uint8_t inverted
     target_t tg;
     int32_t c2;
     if (pitch_q16 <= UNIT_ARG_MAX_Q16 && pitch_q16 >= -UNIT_ARG_MAX_Q16) {
-        c2 = inv_hypot1_q28(pitch_q16);
+        c2 = inv_hypot1_q24_q28(pitch_q16 * 256); /* Q16 -> Q24, |p| <= 8 */
         tg.y = -qi_mul32_fit(pitch_q16, c2, 16u); /* |p * c2| < 1 */
     } else {
         tg.y = steep_pitch_q28(pitch_q16, &c2);
@@ -211,19 +200,6 @@ static int32_t scale_row_q28(int32_t k, q14_t v, unsigned shift)
     return qi_mul32x16_fit(k, v, shift);
 }
 
-/* m scaled into [2^28, 2^30) the way qi_rsqrt_norm_q28 scaled it for the
- * exp2 it returned: by 2^(2 * exp2), exp2 in [-1, 14]. */
-static int32_t norm_q28(uint32_t m, int exp2)
-{
-    const int even = 2 * (exp2 + 1);
-    const uint32_t up2 = (uint32_t)even; /* the even shift, >= 0 */
-    if (up2 == 0u) {
-        return (int32_t)(m >> 2);
-    }
-    const uint32_t scaled = m << (up2 - 2u);
-    return (int32_t)scaled;
-}
-
 /* round(v / 2^shift) for shift in [0, 31]. */
 static int32_t qi_rshift_round_0(int32_t v, unsigned shift)
 {
@@ -241,15 +217,14 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const target_t *tg, int32
     const int32_t z2 = (int32_t)in->z * in->z;
     const uint32_t m_q28 = (uint32_t)x2 + (uint32_t)z2;
     int32_t a = 0;
-    int32_t y = 0;
-    int exp2 = 0;
+    qi_rsqrt_t r = {0, 0, 0};
     if (m_q28 != 0u) {
-        y = qi_rsqrt_norm_q28(m_q28, &exp2);
-        /* sqrt(m) = m * y * 2^exp2 / 2^28 = sqrt(m_n) * 2^-exp2 with m_n the
-         * normalized m in [1, 4): a constant-shift product, then the power
-         * of two (a <= 2.83, below 2^30 in Q28) */
-        const int32_t root_q28 = qi_mul32_fit(norm_q28(m_q28, exp2), y, 28u);
-        a = (exp2 >= 0) ? qi_rshift_round_0(root_q28, (unsigned)exp2) : root_q28 * 2;
+        r = qi_rsqrt_norm_q28(m_q28);
+        /* sqrt(m) = m_n * y * 2^-exp2 / 2^28 with m_n the normalized m in
+         * [1, 4): a constant-shift product, then the power of two (a <= 2.83,
+         * below 2^30 in Q28) */
+        const int32_t root_q28 = qi_mul32_fit(r.xn_q28, r.y_q28, 28u);
+        a = (r.exp2 >= 0) ? qi_rshift_round_0(root_q28, (unsigned)r.exp2) : root_q28 * 2;
     } else {
         /* Fuselage vertical: [-Z, 0, X] / a has no direction. Define it as the
          * upright one, [-1, 0, 0], so the whole pitch error goes to the
@@ -270,8 +245,8 @@ static int32_t pitch_earth_frame(const ht_input_t *in, const target_t *tg, int32
     }
     /* k = pe * y: |pe| <= 4.83 in Q28, y <= 2^28; |X|, |Z| <= a, so each
      * component is at most |pe| */
-    const int32_t k = qi_mul32_fit(pe, y, 28u);
-    const int down = 14 - exp2; /* exp2 in [-1, 14] */
+    const int32_t k = qi_mul32_fit(pe, r.y_q28, 28u);
+    const int down = 14 - r.exp2; /* exp2 in [-1, 14] */
     const unsigned shift = (unsigned)down;
     body[0] = -scale_row_q28(k, in->z, shift);
     body[2] = scale_row_q28(k, in->x, shift);

@@ -16,8 +16,6 @@ _Static_assert((-3L >> 1) == -2L, "signed right shift must be arithmetic");
 
 /* Powers of two in the Q formats of this file (signed, without a signed shift). */
 #define Q26_ONE_I32   ((int32_t)0x04000000) /* 2^26 */
-#define Q28_ONE_I32   ((int32_t)0x10000000) /* 2^28 */
-#define Q28_THREE_I32 ((int32_t)0x30000000) /* 3 * 2^28 */
 #define Q30_ONE_I32   ((int32_t)0x40000000) /* 2^30 */
 
 int16_t q_sat16(int32_t x)
@@ -126,33 +124,19 @@ static QI_ALWAYS_INLINE int32_t table_interp_q15(const uint16_t *table, uint32_t
 
 int32_t q_rsqrt_q28(int32_t s_q28)
 {
+    /* the normalized 1/sqrt on the clamped range: [1/4, 1) comes back with
+     * exp2 = 1 (y doubles), [1, 4) with exp2 = 0 */
     const int32_t s_clamped = q_clamp32(s_q28, Q26_ONE_I32, Q30_ONE_I32 - 1);
-    /* [1/4, 1) is scaled by 4 into [1, 4): the root then halves, y doubles. */
-    unsigned quarter = 0u;
-    if (s_clamped < Q28_ONE_I32) {
-        quarter = 1u;
-    }
-    uint32_t u = (uint32_t)s_clamped << (2u * quarter); /* in [2^28, 2^30) */
-    const int32_t s = (int32_t)u;
-    int32_t y_q28;
-    if (u < ((uint32_t)1 << 29)) { /* [1, 2): steps of 2^22 */
-        uint32_t off = u - ((uint32_t)1 << 28);
-        /* Q15 -> Q28 */
-        y_q28 = table_interp_q15(q_rsqrt_table_q15, off >> 22, (off >> 7) & 0x7FFFu) * 8192;
-    } else { /* [2, 4): steps of 2^23 */
-        uint32_t off = u - ((uint32_t)1 << 29);
-        y_q28 = table_interp_q15(q_rsqrt_table_q15, 64u + (off >> 23), (off >> 8) & 0x7FFFu) * 8192;
-    }
-    /* Newton for 1/sqrt: y <- y * (3 - s*y^2) / 2 squares the relative error. */
-    int32_t sy2_q28 = qi_mul32_fit(s, qi_mul32_fit(y_q28, y_q28, 28u), 28u);
-    y_q28 = qi_mul32_fit(y_q28, (Q28_THREE_I32 - sy2_q28) / 2, 28u);
-    const uint32_t y_u = (uint32_t)y_q28 << quarter; /* y_q28 > 0 */
+    const qi_rsqrt_t r = qi_rsqrt_norm_q28((uint32_t)s_clamped);
+    const uint32_t y_u = (uint32_t)r.y_q28 << (unsigned)r.exp2; /* <= 2^29 */
     return (int32_t)y_u;
 }
 
 int32_t q_rsqrt_norm_q28(uint32_t x, int *exp2)
 {
-    return qi_rsqrt_norm_q28(x, exp2);
+    const qi_rsqrt_t r = qi_rsqrt_norm_q28(x);
+    *exp2 = r.exp2;
+    return r.y_q28;
 }
 
 /* The documented shift range [1, 46], enforced: a shift outside it is read

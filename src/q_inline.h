@@ -397,7 +397,15 @@ static inline int32_t qi_mul32x16_fit(int32_t a, int16_t b, unsigned shift)
  */
 extern const uint16_t q_rsqrt_table_q15[129];
 
-static QI_ALWAYS_INLINE int32_t qi_rsqrt_norm_q28(uint32_t x, int *exp2)
+/* The result, and the scaled argument x_n = x * 2^(2 * exp2) in [2^28, 2^30)
+ * (Q28 in [1, 4)), which callers use for sqrt(x) = x_n * y * 2^-exp2. */
+typedef struct {
+    int32_t y_q28;
+    int exp2;
+    int32_t xn_q28;
+} qi_rsqrt_t;
+
+static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
 {
     const uint32_t xs = (x != 0u) ? x : 1u;
     const unsigned lz = qi_clz32(xs);
@@ -409,7 +417,9 @@ static QI_ALWAYS_INLINE int32_t qi_rsqrt_norm_q28(uint32_t x, int *exp2)
     } else {
         xn = xs >> 2;
     }
-    *exp2 = ((int)even / 2) - 1;
+    qi_rsqrt_t r;
+    r.exp2 = ((int)even / 2) - 1;
+    r.xn_q28 = (int32_t)xn;
     uint32_t idx;
     uint32_t frac_q15;
     /* the masks keep the index inside the table by construction */
@@ -431,7 +441,8 @@ static QI_ALWAYS_INLINE int32_t qi_rsqrt_norm_q28(uint32_t x, int *exp2)
     /* y0 * resid / 2: Q15 * Q28 -> Q28 needs >> 15, the halving one more */
     // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
     const int32_t corr_q28 = ((y0 * resid_q28) + 32768) >> 16;
-    return (y0 * 8192) + corr_q28;
+    r.y_q28 = (y0 * 8192) + corr_q28;
+    return r;
 }
 
 #endif /* HELICAL_Q_INLINE_H */

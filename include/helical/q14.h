@@ -125,8 +125,8 @@ q14_t q14_recip(q14_t x);
 
 /*
  * 1/sqrt(s) in Q28 for s in Q28 within [1/4, 4) (2^26 <= s < 2^30), without
- * division: linear interpolation in a 129-entry table over [1, 4) (error below
- * 1e-4) and one Newton step, which leaves a relative error below 2e-8 (the
+ * division: q_rsqrt_norm_q28 on that range (a 129-entry table over [1, 4) with
+ * linear interpolation and one Newton step), relative error below 2e-8 (the
  * tests measure it over the whole range). Inputs outside the range are
  * clamped to it.
  */
