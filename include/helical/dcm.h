@@ -1,0 +1,176 @@
+/*
+ * dcm.h - the attitude estimator: a fixed-point direction cosine matrix with
+ * PI drift correction (W. Premerlani, P. Bizard, "Direction Cosine Matrix
+ * IMU: Theory", 2009), the estimate the helical-turn law flies on.
+ *
+ * Frames (the library's, see docs/control-law.md):
+ *   body  X out the left wing, Y forward, Z down (right-handed);
+ *   earth north, east, down.
+ *   R maps body coordinates to earth coordinates: row i of R is earth axis i
+ *   seen in the body frame. R[2] (the bottom row) is earth-down in the body
+ *   frame: level [0, 0, 1], right bank phi gives R[2][0] = -sin(phi), nose up
+ *   theta gives R[2][1] = -sin(theta), inverted R[2][2] = -1. That row is the
+ *   law's tilt input (ht_input_t x, y, z). Column 1 of R is the nose in earth
+ *   axes: the heading is atan2(R[1][1], R[0][1]).
+ *   Gyro rates: about +X = nose down, about +Y = roll right, about +Z = nose
+ *   right (from FRD rates p, q, r: w_X = -q, w_Y = p, w_Z = r).
+ *   Specific force (what an accelerometer reads): level, unaccelerated flight
+ *   reads [0, 0, -1] g; a steady coordinated turn at bank phi reads
+ *   [0, 0, -1/cos(phi)] g.
+ *
+ * Each IMU sample: R <- R (I + [w dt]x) with w = gyro - bias + correction,
+ * then renormalization (the orthogonality error of rows 0 and 1 shared half
+ * and half, row 2 = row 0 x row 1, each row scaled by (3 - |r|^2) / 2).
+ * Drift correction: roll/pitch from the gravity reference (the specific force
+ * minus the centripetal acceleration w x v, v along the fuselage from the
+ * airspeed or, when the GPS has a fix, from its velocity), weighted down as
+ * |f| leaves 1 g; yaw from the GPS course when the ground speed is above
+ * gps_min_speed (or a magnetometer, when given). A PI loop turns the error
+ * into a rate correction; its integral is the gyro-bias estimate, bounded.
+ *
+ * Integer only; no float, libm, malloc, recursion or global state: the
+ * caller owns ht_dcm_t (read-only after init) and ht_dcm_state_t.
+ */
+#ifndef HELICAL_DCM_H
+#define HELICAL_DCM_H
+
+#include <stdint.h>
+
+#include "helical/q14.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Where the centripetal compensation takes the velocity from. */
+typedef enum {
+    HT_DCM_CF_OFF = 0,      /* no compensation (for comparison only) */
+    HT_DCM_CF_AIRSPEED = 1, /* v = [0, airspeed, 0] in body axes */
+    HT_DCM_CF_AUTO = 2      /* the GPS velocity when it has a fix, else the airspeed */
+} ht_dcm_cf_t;
+
+/* Parameters, physical units as integers (no float on the board). */
+typedef struct {
+    uint16_t imu_rate_hz;        /* one ht_dcm_update per sample, [50, 1000]; default 200 */
+    q16_t kp_rollpitch;          /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
+    q16_t ki_rollpitch;          /* 1/s^2, [0, 4]; default 0.002 */
+    q16_t kp_yaw;                /* 1/s, [0, 16]; default 0.5 */
+    q16_t ki_yaw;                /* 1/s^2, [0, 4]; default 0.005 */
+    q16_t gyro_bias_max_rad_s;   /* bound of each bias component, [0, 1]; default 0.1 */
+    q16_t gyro_limit_rad_s;      /* the gyro's full scale: |w| >= this flags saturation,
+                                    [1, 64]; default 34.9 (2000 deg/s) */
+    q16_t accel_limit_g;         /* the accelerometer's full scale, [1, 32]; default 16 */
+    q16_t accel_band_g;          /* the gravity reference's weight falls linearly from 1
+                                    at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5 */
+    int16_t gps_min_speed_cm_s;  /* course used for yaw above this, [0, 10000]; default 300 */
+    uint8_t centripetal;         /* ht_dcm_cf_t; default HT_DCM_CF_AUTO */
+} ht_dcm_params_t;
+
+/* Fills p with the defaults above. */
+void ht_dcm_params_default(ht_dcm_params_t *p);
+
+typedef enum {
+    HT_DCM_P_NONE = 0,
+    HT_DCM_P_IMU_RATE,
+    HT_DCM_P_KP_ROLLPITCH,
+    HT_DCM_P_KI_ROLLPITCH,
+    HT_DCM_P_KP_YAW,
+    HT_DCM_P_KI_YAW,
+    HT_DCM_P_BIAS_MAX,
+    HT_DCM_P_GYRO_LIMIT,
+    HT_DCM_P_ACCEL_LIMIT,
+    HT_DCM_P_ACCEL_BAND,
+    HT_DCM_P_GPS_MIN_SPEED,
+    HT_DCM_P_CENTRIPETAL,
+    HT_DCM_P_COUNT
+} ht_dcm_param_id_t;
+
+/* "imu_rate_hz", "kp_rollpitch", ... or "". */
+const char *ht_dcm_param_name(ht_dcm_param_id_t id);
+
+/* The parameters converted once; read-only after ht_dcm_init. Internal
+ * formats are the implementation's (see dcm.c). */
+typedef struct {
+    ht_dcm_params_t p;
+    int32_t dt_q30;        /* 1 / imu_rate_hz in s, Q30 */
+    uint8_t ready;
+} ht_dcm_t;
+
+/* 0 = OK, 1 = NULL, 2 = a parameter out of range (*bad, may be NULL). */
+int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad);
+
+/* One IMU sample, body axes, Q16. */
+typedef struct {
+    q16_t gyro_rad_s[3];
+    q16_t accel_g[3]; /* specific force */
+} ht_imu_sample_t;
+
+/* The slower aiding measurements, given with every sample (flags say what
+ * is new or valid). */
+typedef struct {
+    uint8_t gps_fix;          /* nonzero: the velocity below is a valid 3D fix */
+    uint8_t gps_fresh;        /* nonzero: a new GPS solution arrived since the last sample */
+    int32_t vel_ned_cm_s[3];  /* GPS ground velocity, north, east, down */
+    uint8_t airspeed_valid;   /* nonzero: airspeed_cm_s is a live reading */
+    int16_t airspeed_cm_s;
+    uint8_t mag_valid;        /* nonzero: mag is a fresh magnetometer reading */
+    int16_t mag[3];           /* body axes, any scale (only the direction is used) */
+    int16_t mag_declination_cdeg; /* east-positive, added to the magnetic heading */
+} ht_dcm_aiding_t;
+
+/* Health flags (ht_dcm_state_t.flags, ht_dcm_output_t.flags). */
+enum ht_dcm_flag {
+    HT_DCM_F_ALIGNED = 1u << 0,        /* ht_dcm_align has run (or the first sample did) */
+    HT_DCM_F_GYRO_SATURATED = 1u << 1, /* this sample: a gyro axis at its full scale */
+    HT_DCM_F_ACCEL_SATURATED = 1u << 2,/* this sample: an accelerometer axis at its full scale */
+    HT_DCM_F_ACCEL_IGNORED = 1u << 3,  /* this sample: |f| outside the band, no roll/pitch aid */
+    HT_DCM_F_RENORM_FAILED = 1u << 4,  /* a row's norm left [0.5, 1.5]: R was reset from the
+                                          accelerometer (latched until ht_dcm_reset) */
+    HT_DCM_F_YAW_AIDED = 1u << 5,      /* this sample: yaw corrected from GPS course / mag */
+    HT_DCM_F_BIAS_LIMITED = 1u << 6,   /* a bias component sits on its bound */
+    HT_DCM_F_CF_GPS = 1u << 7          /* this sample's centripetal term used GPS velocity */
+};
+
+typedef struct {
+    int32_t r[3][3];           /* the matrix, internal format (dcm.c) */
+    int32_t bias[3];           /* integral of the PI loop = gyro-bias estimate, internal */
+    int32_t omega_corr[3];     /* last proportional correction, internal */
+    uint16_t flags;
+    uint32_t samples;
+} ht_dcm_state_t;
+
+/* R = identity, zero bias, not aligned. */
+void ht_dcm_reset(ht_dcm_state_t *s);
+
+/*
+ * Start-up alignment: roll and pitch from one (averaged) accelerometer
+ * reading, any attitude (not level, inverted); yaw from heading_cdeg
+ * (a GPS course or magnetometer heading in 0.01 deg, [0, 36000)), or 0 when
+ * heading_valid is 0. Zero bias. Returns 0, or 1 when |accel| is below
+ * 0.5 g (no gravity reference: R is left as it was).
+ */
+int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
+                 uint8_t heading_valid, uint16_t heading_cdeg);
+
+/* One IMU sample. NULL or an uninitialised d: nothing happens. */
+void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *imu,
+                   const ht_dcm_aiding_t *aid);
+
+typedef struct {
+    q14_t r[3][3];              /* R rounded to Q14; r[2] is the law's tilt row */
+    q16_t gyro_bias_rad_s[3];   /* bias estimate */
+    int16_t roll_cdeg;          /* telemetry Euler angles: (-18000, 18000] */
+    int16_t pitch_cdeg;         /* [-9000, 9000] */
+    uint16_t yaw_cdeg;          /* [0, 36000) */
+    q16_t gyro_rad_s[3];        /* the last sample's rates minus the bias (for the law) */
+    uint16_t flags;
+} ht_dcm_output_t;
+
+/* The estimate in the caller's formats. */
+void ht_dcm_output(const ht_dcm_state_t *s, ht_dcm_output_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HELICAL_DCM_H */
