@@ -1,25 +1,19 @@
 /*
  * sil_board.h - the host "board" of the SIL harness.
  *
- * It fills the same seam as the dsPIC and STM32 boards: the sensor seam of
- * include/helical/board.h (board_sensors_t: DCM bottom row Q14, gyros Q11,
- * airspeed cm/s) plus a baro altitude and vertical speed, then the firmware
- * control step (altitude and airspeed holds -> the helical-turn core -> the
- * library's output stage, output_stage.h, with the trim found by JSBSim
- * carried as servo trims in microseconds), and servo pulses out. Only the two
- * ends differ from a real board: the "sensor driver" here converts the
- * simulator's doubles into the seam's fixed-point formats (as an IMU/ADC
- * driver would from raw counts), and the "servo driver" turns each pulse back
- * into the normalized deflection JSBSim takes: (pulse - centre) / travel.
+ * A board port like the STM32 one: it owns the firmware's state and calls
+ * the one firmware step (firmware/fw_step.h) once per IMU sample. Only the
+ * two ends are host-specific: the "sensor drivers" here convert the
+ * simulator's doubles (the IMU samples, GPS, pitot and baro synthesized from
+ * JSBSim by sil/helical_sil/sensors.py) into the seam's fixed-point formats,
+ * as a driver would from raw counts, and the "servo driver" turns each pulse
+ * back into the normalized deflection JSBSim takes: (pulse - centre) / travel.
+ * The scenario's commands are the step's guided command (or RC pulses for
+ * the flight modes); JSBSim's true state can be given as the external
+ * solution (scenario [attitude] source = "truth") for comparison.
  *
- * Not used here: boards/common/fw_loop.c, the pilot-facing loop (RC sticks,
- * mode switch, failsafe). The SIL's commands come from a scenario instead of
- * an RC receiver, and include the altitude/airspeed holds and the inverted
- * flag that the stick loop does not have.
- *
- * The fixed-point part (sil_fw_step) is integer only and uses the library
- * exactly as a board does. Floating point exists only in this host file's
- * conversions (parameters from the scenario, sensors, actuators).
+ * Floating point exists only in this host file's conversions (parameters
+ * from the scenario, sensors, actuators); the step itself is the firmware's.
  *
  * Python calls it through ctypes (sil/helical_sil/board.py mirrors these
  * structs; keep both in step: sil_board_abi_version() guards it).
@@ -30,23 +24,20 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "helical/board.h"
-#include "helical/helical_turn.h"
-#include "helical/holds.h"
-#include "helical/modes.h"
-#include "helical/output_stage.h"
-#include "helical/upset_guard.h"
+#include "fw_step.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define SIL_BOARD_ABI_VERSION 7
+#define SIL_BOARD_ABI_VERSION 8 /* 8: raw sensors, the one firmware step (firmware/fw_step.h) */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
 #define SIL_RC_COUNT      8
 #define SIL_MAX_WAYPOINTS 64
+/* IMU samples per control step the host may give (ABI 8) */
+#define SIL_IMU_MAX 32
 
 /* Everything configurable, in physical units (host doubles). */
 typedef struct {
@@ -69,9 +60,8 @@ typedef struct {
     double trim_aileron, trim_elevator, trim_rudder;
     int32_t control_rate_hz;
     /* flight modes (modes.h; ABI 6). modes_enabled = 0: the scenario's
-     * commands drive the holds and the law directly (as before); 1: every
-     * step runs ht_modes_step -> ht_step -> ht_modes_surfaces on the RC
-     * pulses of sil_command_t, and the command's other fields are unused. */
+     * commands are the firmware step's guided command; 1: the RC pulses of
+     * sil_command_t go through the flight modes. */
     int32_t modes_enabled;
     int32_t modes_pitch_mode; /* ht_pitch_mode_t of the controller the modes drive */
     int32_t nav_law;          /* ht_guide_law_t */
@@ -93,16 +83,37 @@ typedef struct {
     double waypoints[SIL_MAX_WAYPOINTS][3];
     /* ABI 7: the altitude hold's airspeed protection (holds.h; protect 0 = off) */
     double alt_protect_m_s, alt_protect_valid_m_s, alt_kv_pitch_per_m_s, alt_protect_tau_s;
+    /* ABI 8: the attitude estimator (dcm.h) */
+    int32_t imu_rate_hz; /* = control_rate_hz * the IMU samples per control step */
+    double dcm_kp_rollpitch, dcm_ki_rollpitch, dcm_kp_yaw, dcm_ki_yaw;
+    double dcm_gyro_bias_max_deg_s, dcm_gyro_limit_deg_s, dcm_accel_limit_g, dcm_accel_band_g;
+    double dcm_gps_min_speed_m_s;
+    int32_t dcm_centripetal; /* ht_dcm_cf_t */
 } sil_config_t;
 
-/* One control step's sensor readings (library axes: X left, Y forward, Z down). */
+/* One control step's measurements (library axes: X left, Y forward, Z down).
+ * The raw part is the board seam (firmware/fw_step.h): imu_count IMU samples
+ * taken since the previous control step (the last one now), GPS, pitot, baro.
+ * The truth part is JSBSim's own state: the control flies on it when
+ * use_truth != 0 (the estimator still runs on the raw part). */
 typedef struct {
+    int32_t imu_count;                   /* [0, SIL_IMU_MAX] */
+    double gyro_rad_s[SIL_IMU_MAX][3];   /* body rates */
+    double accel_g[SIL_IMU_MAX][3];      /* specific force, g (level flight: 0, 0, -1) */
+    int32_t gps_fresh, gps_fix;          /* a new solution; 3 = 3-D fix */
+    double gps_lat_deg, gps_lon_deg, gps_alt_m;
+    double gps_vel_ned_m_s[3];
+    int32_t airspeed_fresh;
+    double pitot_m_s;
+    int32_t baro_fresh;
+    double baro_alt_m;
+    /* truth */
+    int32_t use_truth;
     double dcm_x, dcm_y, dcm_z;    /* DCM bottom row */
     double gyro_x, gyro_y, gyro_z; /* body rates, rad/s */
     double airspeed_m_s;
     double altitude_m;
     double climb_m_s; /* + = up */
-    /* navigation (ABI 6): position from the start point, ground velocity, true heading */
     double north_m, east_m;
     double vel_north_m_s, vel_east_m_s;
     double heading_rad;
@@ -126,7 +137,7 @@ typedef struct {
     int32_t rc_fresh;
 } sil_command_t;
 
-/* Actuators (after the output stage) and the law's telemetry. */
+/* Actuators (after the output stage) and the firmware's telemetry. */
 typedef struct {
     double aileron, elevator, rudder, throttle;   /* servo commands, [-1, 1] / [0, 1] */
     double law_aileron, law_elevator, law_rudder; /* the core's surfaces before trims */
@@ -147,6 +158,15 @@ typedef struct {
     double blend;
     double aoa_pitch_offset, aoa_trim, aoa_loading;
     int32_t aoa_active;
+    /* ABI 8: the estimator and the solution the control flew on */
+    int32_t control_ran;
+    double est_x, est_y, est_z;                   /* the estimate's bottom row */
+    double est_roll_deg, est_pitch_deg, est_yaw_deg;
+    double est_bias_rad_s[3];
+    int32_t est_flags;                            /* HT_DCM_F_* */
+    double nav_x, nav_y, nav_z;                   /* the bottom row the law was given */
+    double nav_airspeed_m_s, nav_altitude_m, nav_climb_m_s, nav_north_m, nav_east_m;
+    int32_t guard_engaged;
 } sil_actuators_t;
 
 /* The SIL's servo channels (output stage channels, conventional defaults:
@@ -160,53 +180,15 @@ enum {
     SIL_CH_COUNT = 4
 };
 
-/* The firmware's state, owned by the caller (no globals). */
+/* The host board: the firmware's configuration and state (no globals). */
 typedef struct {
-    ht_controller_t law[2]; /* index = ht_pitch_mode_t */
-    ht_alt_hold_params_t alt;
-    ht_alt_hold_state_t alt_state;
-    ht_speed_hold_params_t spd;
-    ht_speed_hold_state_t spd_state;
-    ht_upset_guard_params_t ug; /* the library defaults, as in the HIL firmware */
-    ht_upset_guard_state_t ug_state;
-    os_config_t out;                            /* the output stage: trims live here, in us */
-    ht_waypoint_t waypoints[SIL_MAX_WAYPOINTS]; /* read by modes.nav (must not move) */
-    ht_modes_t modes;
-    ht_modes_state_t modes_state;
-    uint8_t modes_enabled, modes_pitch_mode;
+    fw_config_t cfg;
+    fw_t fw;
+    ht_waypoint_t waypoints[SIL_MAX_WAYPOINTS]; /* read by the modes (must not move) */
+    fw_output_t out;                            /* the last control step */
+    uint8_t modes_enabled;
     uint8_t ready;
 } sil_board_t;
-
-/* Fixed-point command of the firmware step. */
-typedef struct {
-    q11_t turn_rate_rad_s;
-    q16_t pitch_ratio;
-    int32_t altitude_cm;
-    int16_t airspeed_cm_s;
-    q14_t throttle;
-    uint8_t altitude_hold, speed_hold, inverted, pitch_mode;
-    uint16_t rc_us[SIL_RC_COUNT]; /* modes: what board_rc_read_us would give */
-    uint8_t rc_fresh;
-} sil_fw_command_t;
-
-/* Fixed-point sensors of the firmware step: the board.h seam plus baro. */
-typedef struct {
-    board_sensors_t imu;
-    int32_t altitude_cm;
-    int32_t climb_cm_s;                    /* + = up */
-    int32_t north_cm, east_cm;             /* GPS position, local frame, origin = start */
-    int32_t vel_north_cm_s, vel_east_cm_s; /* GPS ground velocity */
-    q14_t heading_north, heading_east;     /* nose direction (used at low ground speed) */
-} sil_fw_sensors_t;
-
-typedef struct {
-    uint16_t pulse_us[SIL_CH_COUNT]; /* what board_servo_write_us would get */
-    q14_t throttle;
-    q16_t pitch_cmd;
-    ht_output_t law;
-    uint8_t servo_clamped;   /* a surface pulse sits on an end point */
-    ht_modes_output_t modes; /* modes on: the step's mode output (else zero) */
-} sil_fw_output_t;
 
 int sil_board_abi_version(void);
 size_t sil_board_size(void);
@@ -221,11 +203,8 @@ size_t sil_actuators_size(void);
  */
 int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t err_len);
 
-/* The integer-only firmware control step (what a board's control loop runs). */
-void sil_fw_step(sil_board_t *b, const sil_fw_sensors_t *s, const sil_fw_command_t *c,
-                 sil_fw_output_t *o);
-
-/* Host wrapper: doubles in, doubles out, through sil_fw_step. */
+/* One control step: doubles in (each IMU sample through fw_step, the
+ * control chain on the last one), doubles out. */
 void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t *c,
                     sil_actuators_t *a);
 

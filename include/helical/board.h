@@ -2,8 +2,8 @@
  * board.h - what the portable firmware needs from a board.
  *
  * One implementation per board lives in boards/<name>/ and is chosen at link
- * time: every board defines exactly these functions, the portable firmware
- * loop (boards/common/fw_loop.c) calls only these, and no portable file ever
+ * time: every board defines exactly these functions, the firmware's main
+ * loop (firmware/fw_main.c) calls only these, and no portable file ever
  * includes a board's own header. A board keeps its driver state in its own
  * file (static instances of caller-owned driver structs); the library in src/
  * holds no state at all.
@@ -13,13 +13,15 @@
  *
  * Porting to a new board: implement every function below in
  * boards/<name>/board_<name>.c, add a CMakeLists.txt that links it with
- * boards/common/fw_loop.c and the helical library, and see boards/README.md.
+ * firmware/ (ht_firmware) and the helical library, and see boards/README.md.
  */
 #ifndef HELICAL_BOARD_H
 #define HELICAL_BOARD_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "helical/dcm.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -76,21 +78,34 @@ static inline board_status_t board_config_check(const board_config_t *cfg)
 }
 
 /*
- * The sensor seam. A board with an IMU and a DCM fills this from them; the
- * STM32 image has no IMU driver yet and gives a level, wings-level attitude,
- * and a simulator link can fill it from a UART. Formats as ht_input_t.
+ * The sensor seam: raw measurements, in the estimator's formats (dcm.h),
+ * library body axes (X out the left wing, Y forward, Z down). The board's
+ * drivers scale their counts into these; the firmware step
+ * (firmware/fw_step.h) does everything else, the attitude included.
  */
 typedef struct {
-    int16_t down_q14[3];       /* DCM bottom row (earth-down in body axes), Q14 */
-    int16_t gyro_q11_rad_s[3]; /* body rates about X, Y, Z, Q11 rad/s */
+    uint8_t fresh;           /* a new solution since the previous read */
+    uint8_t fix;             /* 0 none, 2 2-D, 3 3-D: only 3 is used */
+    int32_t lat_e7, lon_e7;  /* degrees * 1e7 */
+    int32_t alt_cm;          /* above mean sea level */
+    int32_t vel_ned_cm_s[3]; /* north, east, down */
+} board_gps_t;
+
+typedef struct {
+    uint8_t imu_fresh;    /* a new IMU sample */
+    ht_imu_sample_t imu;  /* gyro Q16 rad/s, specific force Q16 g (level: 0, 0, -1) */
+    board_gps_t gps;
+    uint8_t airspeed_fresh; /* a live pitot reading */
     int16_t airspeed_cm_s;
+    uint8_t baro_fresh;
+    int32_t baro_alt_cm; /* pressure altitude, mean sea level */
 } board_sensors_t;
 
 /* Why the firmware entered failsafe (passed to board_failsafe). */
 typedef enum {
     BOARD_FS_NONE = 0,
     BOARD_FS_RC_LOST = 1, /* no valid RC frame for the configured time */
-    BOARD_FS_SENSORS = 2, /* the sensor seam returned no data */
+    BOARD_FS_SENSORS = 2, /* no IMU sample for the firmware's timeout */
     BOARD_FS_CONFIG = 3   /* the output-stage or law configuration was refused:
                              the loop writes no pulses at all; the board should
                              silence its servo outputs */
@@ -132,7 +147,8 @@ board_status_t board_rc_read_us(uint16_t pulse_us[], uint8_t count);
 board_status_t board_servo_write_us(uint8_t channel, uint16_t pulse_us);
 void board_servo_commit(void);
 
-/* Fill the sensor seam for this tick; BOARD_ERR_NO_DATA when nothing fresh. */
+/* Fill the sensor seam for this tick (the fresh flags say what is new);
+ * BOARD_ERR_NO_DATA when nothing at all is fresh. */
 board_status_t board_sensors_read(board_sensors_t *out);
 
 /*

@@ -12,7 +12,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-ABI_VERSION = 7
+ABI_VERSION = 8
+IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
 
@@ -56,6 +57,12 @@ class SilConfig(ctypes.Structure):
         # ABI 7: the altitude hold's airspeed protection (holds.h)
         *((n, _D) for n in ("alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv_pitch_per_m_s",
                             "alt_protect_tau_s")),
+        # ABI 8: the attitude estimator (dcm.h)
+        ("imu_rate_hz", _I),
+        *((n, _D) for n in ("dcm_kp_rollpitch", "dcm_ki_rollpitch", "dcm_kp_yaw", "dcm_ki_yaw",
+                            "dcm_gyro_bias_max_deg_s", "dcm_gyro_limit_deg_s",
+                            "dcm_accel_limit_g", "dcm_accel_band_g", "dcm_gps_min_speed_m_s")),
+        ("dcm_centripetal", _I),
     ]
 
 
@@ -78,12 +85,33 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "alt_protect_tau_s": 0.0,
 }
 
+# ABI 8: the estimator's parameters (dcm.h defaults; imu_rate_hz is the
+# scenario's sim rate, set by sim.board_config).
+ESTIMATOR_CONFIG_DEFAULTS: dict[str, Any] = {
+    "dcm_kp_rollpitch": 0.2, "dcm_ki_rollpitch": 0.002, "dcm_kp_yaw": 0.5, "dcm_ki_yaw": 0.005,
+    "dcm_gyro_bias_max_deg_s": 5.7, "dcm_gyro_limit_deg_s": 2000.0, "dcm_accel_limit_g": 16.0,
+    "dcm_accel_band_g": 0.5, "dcm_gps_min_speed_m_s": 3.0, "dcm_centripetal": 2,
+}
+
 
 class SilSensors(ctypes.Structure):
-    _fields_ = [(n, _D) for n in (
-        "dcm_x", "dcm_y", "dcm_z", "gyro_x", "gyro_y", "gyro_z",
-        "airspeed_m_s", "altitude_m", "climb_m_s",
-        "north_m", "east_m", "vel_north_m_s", "vel_east_m_s", "heading_rad")]
+    _fields_ = [
+        # the raw seam (ABI 8): IMU samples since the last control step, GPS, pitot, baro
+        ("imu_count", _I),
+        ("gyro_rad_s", (_D * 3) * IMU_MAX),
+        ("accel_g", (_D * 3) * IMU_MAX),
+        ("gps_fresh", _I), ("gps_fix", _I),
+        *((n, _D) for n in ("gps_lat_deg", "gps_lon_deg", "gps_alt_m")),
+        ("gps_vel_ned_m_s", _D * 3),
+        ("airspeed_fresh", _I), ("pitot_m_s", _D),
+        ("baro_fresh", _I), ("baro_alt_m", _D),
+        # JSBSim's truth: the solution the control flies on when use_truth
+        ("use_truth", _I),
+        *((n, _D) for n in (
+            "dcm_x", "dcm_y", "dcm_z", "gyro_x", "gyro_y", "gyro_z",
+            "airspeed_m_s", "altitude_m", "climb_m_s",
+            "north_m", "east_m", "vel_north_m_s", "vel_east_m_s", "heading_rad")),
+    ]
 
 
 class SilCommand(ctypes.Structure):
@@ -109,6 +137,15 @@ class SilActuators(ctypes.Structure):
                             "leg_from_north_m", "leg_from_east_m", "blend",
                             "aoa_pitch_offset", "aoa_trim", "aoa_loading")),
         ("aoa_active", _I),
+        # ABI 8: the estimator and the solution the control flew on
+        ("control_ran", _I),
+        *((n, _D) for n in ("est_x", "est_y", "est_z", "est_roll_deg", "est_pitch_deg",
+                            "est_yaw_deg")),
+        ("est_bias_rad_s", _D * 3),
+        ("est_flags", _I),
+        *((n, _D) for n in ("nav_x", "nav_y", "nav_z", "nav_airspeed_m_s", "nav_altitude_m",
+                            "nav_climb_m_s", "nav_north_m", "nav_east_m")),
+        ("guard_engaged", _I),
     ]
 
 
@@ -154,7 +191,7 @@ class Board:
         self._lib = lib
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
-        full = {**MODES_CONFIG_DEFAULTS, **config}
+        full = {**MODES_CONFIG_DEFAULTS, **ESTIMATOR_CONFIG_DEFAULTS, **config}
         for name, _t in SilConfig._fields_:
             if name not in full:
                 raise BoardError(f"board config lacks '{name}'")

@@ -41,6 +41,7 @@ class SensorFaults:
         self.rng = np.random.Generator(np.random.PCG64([sc.seed, SPIKE_STREAM]))
         self.p_spike = sc.airspeed_spike_rate_hz / sc.control_rate_hz
         self.spikes = 0
+        self.spike_m_s = 0.0  # this step's spike (0: none), for apply_pitot
 
     def apply(self, t: float, meas: tuple[float, ...]) -> tuple[float, ...]:
         """meas = (x, y, z, gx, gy, gz, airspeed, altitude, climb), SI units."""
@@ -50,6 +51,7 @@ class SensorFaults:
         # the spike generator advances every step (also before the start) so a
         # spike's time does not depend on fault_start_s
         u, sign = (self.rng.random(), self.rng.random()) if self.p_spike > 0.0 else (1.0, 0.0)
+        self.spike_m_s = 0.0
         if t < sc.fault_start_s - 1e-9:
             return meas
         x, y, z, gx, gy, gz, vt, h, hdot = meas
@@ -59,6 +61,16 @@ class SensorFaults:
         if sc.airspeed_stuck_m_s is not None:
             vt = sc.airspeed_stuck_m_s
         elif u < self.p_spike:
-            vt = max(0.0, vt + math.copysign(sc.airspeed_spike_m_s, sign - 0.5))
+            self.spike_m_s = math.copysign(sc.airspeed_spike_m_s, sign - 0.5)
+            vt = max(0.0, vt + self.spike_m_s)
             self.spikes += 1
         return (x, y, z, gx, gy, gz, vt, h, hdot)
+
+    def apply_pitot(self, t: float, v: float) -> float:
+        """The same airspeed fault on the simulated pitot's reading (the
+        sensor-level path); call after apply() of the same step."""
+        if not self.on or t < self.sc.fault_start_s - 1e-9:
+            return v
+        if self.sc.airspeed_stuck_m_s is not None:
+            return self.sc.airspeed_stuck_m_s
+        return max(0.0, v + self.spike_m_s)

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from helical_sil import sensors as sensors_mod
+
 SIL_DIR = Path(__file__).resolve().parents[1]
 DEFAULT_AIRCRAFT_DIR = SIL_DIR / "scenarios" / "aircraft"
 
@@ -114,6 +116,7 @@ class Command:
     throttle: float | None = None
     inverted: bool | None = None
     pitch_mode: str | None = None
+    gps: bool | None = None  # False: a GPS outage from here (no fresh fixes), True: back
 
 
 @dataclass
@@ -239,6 +242,10 @@ class Scenario:
     commands: list[Command] = field(default_factory=list)
     criteria: list[PassCriterion] = field(default_factory=list)
     modes: ModesConfig | None = None  # flight modes: the [[rc]] timeline flies the board
+    # --- sensor-level SIL (issue 13) ---
+    attitude_source: str = "truth"  # "truth": JSBSim's attitude; "estimate": the firmware's estimator
+    sensor_model: dict[str, Any] = field(default_factory=dict)  # [sensor_model] tables
+    estimator: dict[str, float] = field(default_factory=dict)   # [estimator] overrides
 
 
 # --- typed getters ----------------------------------------------------------
@@ -508,10 +515,18 @@ def _parse_modes(src: Path, doc: dict[str, Any], ac: Aircraft, duration: float,
 TOP_KEYS = ("aircraft", "description", "duration_s", "seed", "control_rate_hz", "sim_rate_hz",
             "initial", "gains", "wind", "sensors", "command", "pass", "metrics",
             "modes", "nav", "fbw", "aoa", "waypoint", "rc",
-            "upset")  # fault campaign (issue 7)
+            "upset",  # fault campaign (issue 7)
+            "attitude", "sensor_model", "estimator")  # sensor-level SIL (issue 13)
 COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb_m_s",
                 "airspeed_m_s",
-                "throttle", "inverted", "pitch_mode")
+                "throttle", "inverted", "pitch_mode", "gps")
+ATTITUDE_SOURCES = ("estimate", "truth")
+# [estimator]: the firmware estimator's parameters (dcm.h), SIL units
+ESTIMATOR_KEYS: dict[str, tuple[float, float]] = {
+    "kp_rollpitch": (0.0, 16.0), "ki_rollpitch": (0.0, 4.0), "kp_yaw": (0.0, 16.0),
+    "ki_yaw": (0.0, 4.0), "gyro_bias_max_deg_s": (0.0, 57.0),
+    "gps_min_speed_m_s": (0.0, 100.0), "accel_band_g": (0.01, 4.0), "centripetal": (0, 2),
+}
 
 
 # --- fault campaign (issue 7) ---
@@ -599,6 +614,21 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     sc.wind_down_m_s = _num(src, "wind.down_m_s", wind.get("down_m_s", 0.0), -50.0, 50.0)
     sc.turbulence = _str(src, "wind.turbulence", wind.get("turbulence", "none"), TURBULENCE)
 
+    att = _table(src, "attitude", doc.get("attitude", {}))
+    _check_keys(src, "attitude", att, ("source",))
+    sc.attitude_source = _str(src, "attitude.source", att.get("source", "truth"),
+                              ATTITUDE_SOURCES)
+    sc.sensor_model = _table(src, "sensor_model", doc.get("sensor_model", {}))
+    try:  # the sensor model names a bad key itself
+        sensors_mod.config_from_dict(sc.sensor_model)
+    except ValueError as e:
+        raise ScenarioError(f"{src}: [sensor_model] {e}") from None
+    est = _table(src, "estimator", doc.get("estimator", {}))
+    _check_keys(src, "estimator", est, tuple(ESTIMATOR_KEYS))
+    for k, (lo, hi) in ESTIMATOR_KEYS.items():
+        if k in est:
+            sc.estimator[k] = _num(src, "estimator." + k, est[k], lo, hi)
+
     sens = _table(src, "sensors", doc.get("sensors", {}))
     _check_keys(src, "sensors", sens, SENSOR_KEYS)
     sc.gyro_noise_rad_s = _num(src, "sensors.gyro_noise_rad_s", sens.get("gyro_noise_rad_s", 0.0),
@@ -672,6 +702,8 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
             cmd.inverted = _bool(src, pre + ".inverted", c["inverted"])
         if "pitch_mode" in c:
             cmd.pitch_mode = _str(src, pre + ".pitch_mode", c["pitch_mode"], PITCH_MODES)
+        if "gps" in c:
+            cmd.gps = _bool(src, pre + ".gps", c["gps"])
         sc.commands.append(cmd)
 
     crit = doc.get("pass", [])

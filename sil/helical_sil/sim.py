@@ -21,6 +21,8 @@ import numpy as np
 
 from helical_sil import frames
 from helical_sil.board import Board
+from helical_sil import sensors as sensors_mod
+from helical_sil.board import IMU_MAX
 from helical_sil.faults import SensorFaults  # fault campaign (issue 7)
 from helical_sil.scenario import Scenario
 
@@ -50,6 +52,13 @@ COLUMNS = (
     # the air mass (issue 7): total wind (steady + turbulence) at the step, and the
     # air's vertical displacement since t = 0 (the down wind integrated every sim frame)
     "wind_north_m_s", "wind_east_m_s", "wind_down_m_s", "air_down_m",
+    # the firmware's estimator (issue 13): its bottom row and Euler angles, the
+    # gyro-bias estimate, its flags, the angle between the estimated and the
+    # true earth-down vector, the heading error, and whether the GPS was on
+    "est_x", "est_y", "est_z", "est_roll_deg", "est_pitch_deg", "est_yaw_deg",
+    "est_bias_x_deg_s", "est_bias_y_deg_s", "est_bias_z_deg_s", "est_flags",
+    "attitude_error_deg", "heading_error_deg", "gps_on", "true_bias_x_deg_s",
+    "true_bias_y_deg_s", "true_bias_z_deg_s",
 )
 MODE_NAMES = ("manual", "fbw", "waypoint", "rth")
 MODE_THRESHOLDS_US = (1250, 1750, 2100)  # modes.h defaults (the board uses them)
@@ -206,7 +215,34 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
         "trim_aileron": trims["aileron"], "trim_elevator": trims["elevator"],
         "trim_rudder": trims["rudder"],
         "control_rate_hz": sc.control_rate_hz,
+        **estimator_config(sc),
     }
+
+
+def estimator_config(sc: Scenario) -> dict[str, float]:
+    """The firmware estimator's parameters: dcm.h defaults, the scenario's
+    [estimator] overrides, the IMU at the sim rate and the sensors' full scales."""
+    model = sensors_mod.config_from_dict(sc.sensor_model)
+    e = sc.estimator
+    return {
+        "imu_rate_hz": sc.sim_rate_hz,
+        "dcm_kp_rollpitch": e.get("kp_rollpitch", 0.2),
+        "dcm_ki_rollpitch": e.get("ki_rollpitch", 0.002),
+        "dcm_kp_yaw": e.get("kp_yaw", 0.5), "dcm_ki_yaw": e.get("ki_yaw", 0.005),
+        "dcm_gyro_bias_max_deg_s": e.get("gyro_bias_max_deg_s", 5.7),
+        "dcm_gyro_limit_deg_s": math.degrees(model.imu.gyro.range_rad_s),
+        "dcm_accel_limit_g": model.imu.accel.range_g,
+        "dcm_accel_band_g": e.get("accel_band_g", 0.5),
+        "dcm_gps_min_speed_m_s": e.get("gps_min_speed_m_s", 3.0),
+        "dcm_centripetal": int(e.get("centripetal", 2)),
+    }
+
+
+def sensor_model(sc: Scenario) -> sensors_mod.SensorModel:
+    """The scenario's sensors: the IMU at the sim rate, the [sensor_model] tables."""
+    cfg = sensors_mod.config_from_dict(sc.sensor_model)
+    cfg = sensors_mod.config_from_dict({"imu": {"rate_hz": float(sc.sim_rate_hz)}}, cfg)
+    return sensors_mod.SensorModel(cfg, seed=sc.seed)
 
 
 def mode_of_pulse(us: int) -> str:
@@ -378,6 +414,17 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     bias = sc.gyro_bias_rad_s * rng.choice(np.array([-1.0, 1.0]), size=3)
     faults = SensorFaults(sc)  # fault campaign (issue 7)
 
+    model = sensor_model(sc)
+    use_truth = sc.attitude_source == "truth"
+    state0 = sensors_mod.read_fdm_state(fdm)
+    # the first control step's samples: the state after the trim, n_sub times
+    imu_batch = [model.imu(state0, 0.0)] * (sc.sim_rate_hz // sc.control_rate_hz)
+    imu_fifo: deque[list[sensors_mod.ImuSample]] = deque()
+    # the legacy gyro errors ([sensors] gyro_*) also act on the IMU samples
+    imu_bias = bias if sc.gyro_bias_rad_s > 0.0 else np.zeros(3)
+    imu_rng = np.random.Generator(np.random.PCG64([sc.seed, 0x1A1]))
+    gps_on = True
+
     segs = _segments(sc) if sc.modes is None else _mode_segments(sc, rcs)
     rc_ptr = -1
     n_sub = sc.sim_rate_hz // sc.control_rate_hz
@@ -412,6 +459,9 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
                 cmd.airspeed_m_s = c.airspeed_m_s
             if c.throttle is not None:
                 cmd.speed_hold, cmd.throttle = 0, c.throttle
+            if c.gps is not None:
+                gps_on = c.gps
+                model.gps_enabled = gps_on
             cmd_ptr += 1
         seg = segs[seg_i]
         if sc.modes is not None:
@@ -467,6 +517,9 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         # GPS: position from the start point and ground velocity (not delayed)
         sens.north_m, sens.east_m, sens.vel_north_m_s, sens.vel_east_m_s = north, east, vn, ve
         sens.heading_rad = psi
+        sens.use_truth = int(use_truth)
+        _raw_sensors(sc, sens, model, sensors_mod.read_fdm_state(fdm), t, imu_batch, imu_fifo,
+                     faults, imu_bias, imu_rng)
         a = board.step()
         ail, elev, rud = frames.surfaces_to_jsbsim(a.aileron, a.elevator, a.rudder)
         fdm["fcs/aileron-cmd-norm"] = ail
@@ -504,6 +557,11 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             a.aoa_pitch_offset, a.aoa_trim, float(a.aoa_active),
             fdm["atmosphere/total-wind-north-fps"] * FT, fdm["atmosphere/total-wind-east-fps"] * FT,
             fdm["atmosphere/total-wind-down-fps"] * FT, air_down,
+            a.est_x, a.est_y, a.est_z, a.est_roll_deg, a.est_pitch_deg, a.est_yaw_deg,
+            *(math.degrees(b_) for b_ in a.est_bias_rad_s), float(a.est_flags),
+            _angle_deg((a.est_x, a.est_y, a.est_z), (x, y, z)),
+            _wrap180(a.est_yaw_deg - math.degrees(psi)), float(gps_on),
+            *(math.degrees(b_) for b_ in model_bias(model, imu_bias)),
         )
         if steady_wind:
             # JSBSim's run_ic and trim reset atmosphere/wind-*-fps, so the
@@ -513,11 +571,14 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             fdm["atmosphere/wind-north-fps"] = ramp * sc.wind_north_m_s / FT
             fdm["atmosphere/wind-east-fps"] = ramp * sc.wind_east_m_s / FT
             fdm["atmosphere/wind-down-fps"] = ramp * sc.wind_down_m_s / FT
-        for _ in range(n_sub):
+        imu_batch = []
+        for j in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
             # rectangle rule at the sim rate on the wind after each frame
             air_down += fdm["atmosphere/total-wind-down-fps"] * FT * dt_sim
+            # the IMU samples the frame's state (specific force, rates)
+            imu_batch.append(model.imu(sensors_mod.read_fdm_state(fdm), t + (j + 1) * dt_sim))
         north += vn * dt_ctl
         east += ve * dt_ctl
         if h < 5.0:
@@ -526,6 +587,68 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     wall = time.perf_counter() - t_wall
     tel = {name: log[:, i].copy() for i, name in enumerate(COLUMNS)}
     return RunResult(sc, tel, segs, wall, trims)
+
+
+def _angle_deg(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
+    """The angle between two vectors (the estimated and the true earth-down)."""
+    na = math.sqrt(sum(v * v for v in a))
+    nb = math.sqrt(sum(v * v for v in b))
+    if na == 0.0 or nb == 0.0:
+        return 180.0
+    c = sum(u * v for u, v in zip(a, b)) / (na * nb)
+    return math.degrees(math.acos(max(-1.0, min(1.0, c))))
+
+
+def _wrap180(d: float) -> float:
+    return (d + 180.0) % 360.0 - 180.0
+
+
+def model_bias(model: sensors_mod.SensorModel, extra: np.ndarray) -> tuple[float, ...]:
+    """The gyro's true bias now (library axes, rad/s): the model's own plus the
+    legacy [sensors] gyro_bias_rad_s."""
+    tri = model._imu.gyro  # the model's constant bias and its random walk
+    own = tri.bias + tri.walk_state
+    return tuple(float(o + e) for o, e in zip(own, extra))
+
+
+def _raw_sensors(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
+                 state: sensors_mod.FdmState, t: float, imu_batch: list[sensors_mod.ImuSample],
+                 fifo: deque[list[sensors_mod.ImuSample]], faults: SensorFaults,
+                 bias: np.ndarray, rng: np.random.Generator) -> None:
+    """The board seam of one control step: the IMU samples since the previous
+    step (delayed by latency_steps), GPS, pitot and baro. The legacy [sensors]
+    errors act here too: gyro bias and noise on every sample, the faults'
+    gyro clipping from fault_start_s, the pitot through faults.apply."""
+    fifo.append(imu_batch)
+    if len(fifo) > sc.latency_steps + 1:
+        fifo.popleft()
+    batch = fifo[0]
+    n = min(len(batch), IMU_MAX)
+    sens.imu_count = n  # type: ignore[attr-defined]
+    lim = sc.gyro_saturation_rad_s if t >= sc.fault_start_s - 1e-9 else None
+    for i in range(n):
+        g = np.asarray(batch[i].gyro_rad_s, dtype=float) + bias
+        if sc.gyro_noise_rad_s > 0.0:
+            g = g + sc.gyro_noise_rad_s * rng.normal(0.0, 1.0, size=3)
+        if lim is not None:
+            g = np.clip(g, -lim, lim)
+        for k in range(3):
+            sens.gyro_rad_s[i][k] = float(g[k])  # type: ignore[attr-defined]
+            sens.accel_g[i][k] = float(batch[i].accel_g[k])  # type: ignore[attr-defined]
+    gps = model.gps(state, t)
+    sens.gps_fresh = int(gps.fresh)  # type: ignore[attr-defined]
+    sens.gps_fix = 3 if gps.fix_3d else 0  # type: ignore[attr-defined]
+    sens.gps_lat_deg, sens.gps_lon_deg = gps.lat_deg, gps.lon_deg  # type: ignore[attr-defined]
+    sens.gps_alt_m = gps.alt_msl_m  # type: ignore[attr-defined]
+    for k in range(3):
+        sens.gps_vel_ned_m_s[k] = gps.vel_ned_m_s[k]  # type: ignore[attr-defined]
+    pitot = model.pitot(state, t).airspeed_m_s
+    if sc.airspeed_noise_m_s > 0.0:
+        pitot += sc.airspeed_noise_m_s * float(rng.normal())
+    # the faults' pitot (stuck, spikes) through the same function as the truth path
+    pitot = faults.apply_pitot(t, pitot) if hasattr(faults, "apply_pitot") else pitot
+    sens.airspeed_fresh, sens.pitot_m_s = 1, pitot  # type: ignore[attr-defined]
+    sens.baro_fresh, sens.baro_alt_m = 1, model.baro(state, t).altitude_m  # type: ignore[attr-defined]
 
 
 def write_csv(res: RunResult, path: str | os.PathLike[str]) -> None:

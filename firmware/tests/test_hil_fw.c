@@ -1,8 +1,10 @@
 /*
  * test_hil_fw.c - the firmware side of the HIL link on the host, against the
- * SIL host board's integer step (boards/sil, sil_fw_step): configured with
- * the same fixed-point parameters and fed the same inputs, both give the same
- * pulses, intermediates and hold states, bit for bit, step after step. Also:
+ * SIL host board (boards/sil, sil_board_step with the truth solution): both
+ * hosts call the one firmware step; configured with the same parameters and
+ * fed the same solution and command, one through the link's frames and one
+ * through the SIL's doubles, both give the same pulses, intermediates and
+ * hold states, bit for bit, step after step. Also:
  * the configuration handshake, and that bad frames (CRC, length, unknown id,
  * reserved bits, before START) are counted or refused and never acted on.
  *
@@ -128,6 +130,17 @@ static sil_config_t config(void)
     c.trim_elevator = -0.021;
     c.trim_rudder = 0.004;
     c.control_rate_hz = 40;
+    c.imu_rate_hz = 120;
+    c.dcm_kp_rollpitch = 0.2;
+    c.dcm_ki_rollpitch = 0.002;
+    c.dcm_kp_yaw = 0.5;
+    c.dcm_ki_yaw = 0.005;
+    c.dcm_gyro_bias_max_deg_s = 5.7;
+    c.dcm_gyro_limit_deg_s = 2000.0;
+    c.dcm_accel_limit_g = 16.0;
+    c.dcm_accel_band_g = 0.5;
+    c.dcm_gps_min_speed_m_s = 3.0;
+    c.dcm_centripetal = 2;
     return c;
 }
 
@@ -185,7 +198,7 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
     p[0] = SIL_CH_COUNT;
     p[1] = 0u;
     for (int i = 0; i < SIL_CH_COUNT; ++i) {
-        const os_channel_t *ch = &sil.out.ch[i];
+        const os_channel_t *ch = &sil.cfg.out.ch[i];
         uint8_t *r = &p[2 + 14 * i];
         r[0] = ch->function;
         r[1] = ch->reversed;
@@ -255,7 +268,22 @@ static void test_ready_banner_and_hello(void)
     TEST_ASSERT_EQUAL_UINT16(1u, hil_get_u16(&host_rx.payload[6])); /* frames_ok */
 }
 
-static void random_inputs(uint64_t *rng, sil_fw_sensors_t *s, sil_fw_command_t *c, int wild)
+/* The step's fixed-point inputs as the test draws them. */
+typedef struct {
+    hil_attitude_t imu;
+    int32_t altitude_cm, climb_cm_s;
+} fx_sensors_t;
+
+typedef struct {
+    q11_t turn_rate_rad_s;
+    q16_t pitch_ratio;
+    int32_t altitude_cm;
+    int16_t airspeed_cm_s;
+    q14_t throttle;
+    uint8_t altitude_hold, speed_hold, inverted, pitch_mode;
+} fx_command_t;
+
+static void random_inputs(uint64_t *rng, fx_sensors_t *s, fx_command_t *c, int wild)
 {
     memset(s, 0, sizeof *s);
     memset(c, 0, sizeof *c);
@@ -291,7 +319,7 @@ static void random_inputs(uint64_t *rng, sil_fw_sensors_t *s, sil_fw_command_t *
     c->pitch_mode = (uint8_t)((f >> 3) & 1u);
 }
 
-static void to_hil(const sil_fw_sensors_t *s, const sil_fw_command_t *c, hil_step_in_t *in)
+static void to_hil(const fx_sensors_t *s, const fx_command_t *c, hil_step_in_t *in)
 {
     memset(in, 0, sizeof *in);
     in->imu = s->imu;
@@ -308,11 +336,45 @@ static void to_hil(const sil_fw_sensors_t *s, const sil_fw_command_t *c, hil_ste
                   (c->pitch_mode ? HIL_SF_TILT_CROSS : 0u));
 }
 
-/* One step on both boards, the firmware's through frames; compare all. */
-static void step_both(uint32_t seq, const sil_fw_sensors_t *s, const sil_fw_command_t *c)
+/* The same inputs as the SIL harness gives them: doubles that convert back
+ * to exactly these fixed-point values, the truth solution, one control
+ * period of (zero) IMU samples. */
+static void sil_step(const fx_sensors_t *s, const fx_command_t *c)
 {
-    sil_fw_output_t o;
-    sil_fw_step(&sil, s, c, &o);
+    static sil_sensors_t ss;
+    static sil_command_t sc;
+    static sil_actuators_t a;
+    memset(&ss, 0, sizeof ss);
+    memset(&sc, 0, sizeof sc);
+    ss.imu_count = 3; /* imu_rate_hz / control_rate_hz */
+    ss.use_truth = 1;
+    ss.dcm_x = s->imu.down_q14[0] / 16384.0;
+    ss.dcm_y = s->imu.down_q14[1] / 16384.0;
+    ss.dcm_z = s->imu.down_q14[2] / 16384.0;
+    ss.gyro_x = s->imu.gyro_q11_rad_s[0] / 2048.0;
+    ss.gyro_y = s->imu.gyro_q11_rad_s[1] / 2048.0;
+    ss.gyro_z = s->imu.gyro_q11_rad_s[2] / 2048.0;
+    ss.airspeed_m_s = s->imu.airspeed_cm_s / 100.0;
+    ss.altitude_m = s->altitude_cm / 100.0;
+    ss.climb_m_s = s->climb_cm_s / 100.0;
+    sc.turn_rate_rad_s = c->turn_rate_rad_s / 2048.0;
+    sc.pitch_ratio = c->pitch_ratio / 65536.0;
+    sc.altitude_m = c->altitude_cm / 100.0;
+    sc.airspeed_m_s = c->airspeed_cm_s / 100.0;
+    sc.throttle = c->throttle / 16384.0;
+    sc.altitude_hold = c->altitude_hold;
+    sc.speed_hold = c->speed_hold;
+    sc.inverted = c->inverted;
+    sc.pitch_mode = c->pitch_mode;
+    sil_board_step(&sil, &ss, &sc, &a);
+    TEST_ASSERT_EQUAL_INT(1, a.control_ran);
+}
+
+/* One step on both boards, the firmware's through frames; compare all. */
+static void step_both(uint32_t seq, const fx_sensors_t *s, const fx_command_t *c)
+{
+    sil_step(s, c);
+    const fw_output_t o = sil.out;
     hil_step_in_t in;
     to_hil(s, c, &in);
     uint8_t p[HIL_LEN_SENSORS];
@@ -339,23 +401,28 @@ static void step_both(uint32_t seq, const sil_fw_sensors_t *s, const sil_fw_comm
                              hil_get_u16(&r[38]));
     /* the whole law output, and the holds' states, not only what is sent */
     TEST_ASSERT_EQUAL_MEMORY(&o.law, &fw.res.law, sizeof o.law);
-    TEST_ASSERT_EQUAL_INT32(sil.alt_state.integral_q20[0], fw.alt_state.integral_q20[0]);
-    TEST_ASSERT_EQUAL_INT32(sil.alt_state.integral_q20[1], fw.alt_state.integral_q20[1]);
-    TEST_ASSERT_EQUAL_INT32(sil.spd_state.integral_q20, fw.spd_state.integral_q20);
+    TEST_ASSERT_EQUAL_MEMORY(&o.law_in, &fw.fw_out.law_in, sizeof o.law_in);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.modes_state.alt, &fw.fw.modes_state.alt,
+                             sizeof fw.fw.modes_state.alt);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.modes_state.speed, &fw.fw.modes_state.speed,
+                             sizeof fw.fw.modes_state.speed);
+    TEST_ASSERT_EQUAL_UINT8(sil.fw.guard_state.engaged, fw.fw.guard_state.engaged);
 }
 
 static void test_same_step_as_the_sil_board(void)
 {
     start_both();
     /* the clamped initial integrators */
-    TEST_ASSERT_EQUAL_INT32(sil.alt_state.integral_q20[0], fw.alt_state.integral_q20[0]);
-    TEST_ASSERT_EQUAL_INT32(sil.alt_state.integral_q20[1], fw.alt_state.integral_q20[1]);
-    TEST_ASSERT_EQUAL_MEMORY(&sil.out, &fw.out, sizeof sil.out);
-    TEST_ASSERT_EQUAL_MEMORY(&sil.law[0], &fw.law[0], sizeof sil.law[0]);
-    TEST_ASSERT_EQUAL_MEMORY(&sil.law[1], &fw.law[1], sizeof sil.law[1]);
+    const ht_alt_hold_state_t *sa = &sil.fw.modes_state.alt, *fa = &fw.fw.modes_state.alt;
+    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[0], fa->integral_q20[0]);
+    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[1], fa->integral_q20[1]);
+    TEST_ASSERT_EQUAL_UINT8(sil.cfg.out.count, fw.cfg.out.count); /* the channels in use */
+    TEST_ASSERT_EQUAL_MEMORY(sil.cfg.out.ch, fw.cfg.out.ch, sil.cfg.out.count * sizeof(os_channel_t));
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[0], &fw.fw.law[0], sizeof sil.fw.law[0]);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[1], &fw.fw.law[1], sizeof sil.fw.law[1]);
     uint64_t rng = 2024;
-    sil_fw_sensors_t s;
-    sil_fw_command_t c;
+    fx_sensors_t s;
+    fx_command_t c;
     for (uint32_t k = 0; k < 20000u; ++k) {
         random_inputs(&rng, &s, &c, (k % 4u) == 3u);
         step_both(k, &s, &c);
@@ -368,8 +435,8 @@ static void test_bad_frames_are_never_acted_on(void)
 {
     start_both();
     uint64_t rng = 5;
-    sil_fw_sensors_t s;
-    sil_fw_command_t c;
+    fx_sensors_t s;
+    fx_command_t c;
     random_inputs(&rng, &s, &c, 0);
     step_both(0, &s, &c);
     const hil_fw_t before = fw;
@@ -398,8 +465,8 @@ static void test_bad_frames_are_never_acted_on(void)
     TEST_ASSERT_EQUAL_UINT16(1u, fw.rx.stats.bad_crc);
     TEST_ASSERT_EQUAL_UINT16(3u, fw.rx.stats.unknown_id); /* wrong length counts here */
     TEST_ASSERT_EQUAL_UINT32(before.steps, fw.steps);
-    TEST_ASSERT_EQUAL_MEMORY(&before.alt_state, &fw.alt_state, sizeof fw.alt_state);
-    TEST_ASSERT_EQUAL_MEMORY(&before.spd_state, &fw.spd_state, sizeof fw.spd_state);
+    TEST_ASSERT_EQUAL_MEMORY(&before.fw.modes_state, &fw.fw.modes_state,
+                             sizeof fw.fw.modes_state);
     TEST_ASSERT_EQUAL_UINT32(1u, fake_board.commits);
 
     /* reserved flag bits: refused with a NAK, not stepped */

@@ -3,12 +3,14 @@
  * (docs/hil-protocol.md): configuration frames, one control step per sensor
  * frame, and the answer with the pulses read back from the timer.
  *
- * The control step is the SIL host board's integer step (boards/sil,
- * sil_fw_step) call for call: ht_alt_hold_step_v -> ht_speed_hold_step ->
- * ht_step (one controller per pitch method) -> os_compute, on the same
- * fixed-point inputs; the simulator sends those inputs already converted, so
- * a PIL run and a SIL run agree bit for bit (tests/test_hil_fw.c checks the
- * two steps against each other on the host).
+ * The control step is THE firmware step (fw_step.h), as in the flight image
+ * and the SIL host board. Protocol version 2 carries the simulator's
+ * navigation solution (DCM row, rates, air data) and the scenario's command,
+ * already converted: each SENSORS frame is fw_step's external solution and
+ * guided command, given for control_divider calls (the control chain runs on
+ * the last), so a PIL run and a SIL run with the truth attitude agree bit
+ * for bit (firmware/tests/test_hil_fw.c checks the two on the host). Raw IMU
+ * samples over the link are the next protocol version's (docs/hil-protocol.md).
  *
  * Portable: the protocol and the step use only board.h plus the three link
  * functions below, which the HIL image's board file provides. All state is
@@ -20,12 +22,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fw_step.h"
 #include "helical/board.h"
-#include "helical/helical_turn.h"
 #include "helical/hil_frame.h"
-#include "helical/holds.h"
-#include "helical/output_stage.h"
-#include "helical/upset_guard.h"
 
 #define HIL_PROTOCOL_VERSION 2u /* 2: CFG_ALT carries the airspeed protection */
 
@@ -73,9 +72,16 @@
 #define HIL_NAK_NOT_STARTED 1u /* SENSORS before a successful START */
 #define HIL_NAK_BAD_FIELD   2u /* reserved flag bits set */
 
-/* The step's fixed-point inputs: sil_fw_sensors_t + sil_fw_command_t. */
+/* The navigation solution a SENSORS frame carries (protocol version 2). */
 typedef struct {
-    board_sensors_t imu;
+    q14_t down_q14[3];       /* DCM bottom row */
+    q11_t gyro_q11_rad_s[3]; /* body rates */
+    int16_t airspeed_cm_s;
+} hil_attitude_t;
+
+/* The step's fixed-point inputs: the solution and the scenario's command. */
+typedef struct {
+    hil_attitude_t imu;
     int32_t altitude_cm;
     int32_t climb_cm_s;
     q11_t turn_rate_rad_s;
@@ -95,22 +101,11 @@ typedef struct {
 } hil_step_out_t;
 
 typedef struct {
-    /* staged by the CFG_* frames, checked and copied at START */
-    ht_params_t law_params;
-    ht_alt_hold_params_t alt_staged;
-    int32_t alt_integral_q20[2];
-    ht_speed_hold_params_t spd_staged;
-    os_config_t out_staged;
+    /* staged by the CFG_* frames, checked and put in force at START */
+    fw_config_t cfg;
     uint8_t have; /* bit per CFG block received: 1 law, 2 alt, 4 spd, 8 out */
     /* in force after START */
-    ht_controller_t law[2]; /* index = ht_pitch_mode_t */
-    ht_alt_hold_params_t alt;
-    ht_alt_hold_state_t alt_state;
-    ht_speed_hold_params_t spd;
-    ht_speed_hold_state_t spd_state;
-    ht_upset_guard_params_t ug; /* the library defaults (no protocol field) */
-    ht_upset_guard_state_t ug_state;
-    os_config_t out;
+    fw_t fw;
     uint8_t started;
     /* link */
     uint8_t rx_len[HIL_ID_HOST_COUNT]; /* the decoder's table: expected lengths */
@@ -120,9 +115,10 @@ typedef struct {
     /* the step's working structs (kept off the stack; also telemetry) */
     hil_step_in_t in;
     hil_step_out_t res;
-    ht_input_t law_in;
-    os_command_t cmd;
-    uint16_t pulses[OS_MAX_CHANNELS];
+    fw_inputs_t fw_in;
+    fw_nav_t nav;
+    fw_guided_t guided;
+    fw_output_t fw_out;
     uint8_t frame[HIL_FRAME_MAX];
     uint8_t payload[HIL_PAYLOAD_MAX];
 } hil_fw_t;

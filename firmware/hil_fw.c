@@ -54,8 +54,7 @@ void hil_fw_init(hil_fw_t *h)
     h->rx_len[HIL_ID_SENSORS] = HIL_LEN_SENSORS;
     const hil_msg_table_t table = {h->rx_len, (uint8_t)HIL_ID_HOST_COUNT};
     hil_decoder_init(&h->rx, table);
-    const ht_params_t defaults = HT_PARAMS_DEFAULT;
-    h->law_params = defaults;
+    fw_config_default(&h->cfg);
 }
 
 void hil_fw_send_ready(hil_fw_t *h)
@@ -100,7 +99,7 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
 
 static void cfg_law(hil_fw_t *h, const uint8_t *p)
 {
-    ht_params_t *l = &h->law_params;
+    ht_params_t *l = &h->cfg.law;
     l->kp_aileron = hil_get_i32(&p[0]);
     l->kp_elevator = hil_get_i32(&p[4]);
     l->kp_rudder = hil_get_i32(&p[8]);
@@ -119,7 +118,7 @@ static void cfg_law(hil_fw_t *h, const uint8_t *p)
 
 static void cfg_alt(hil_fw_t *h, const uint8_t *p)
 {
-    ht_alt_hold_params_t *a = &h->alt_staged;
+    ht_alt_hold_params_t *a = &h->cfg.modes.alt;
     a->kp_pitch_per_m = hil_get_i32(&p[0]);
     a->ki_pitch_per_m_s = hil_get_i32(&p[4]);
     a->kd_pitch_per_m_s = hil_get_i32(&p[8]);
@@ -128,8 +127,8 @@ static void cfg_alt(hil_fw_t *h, const uint8_t *p)
     a->max_error_cm = hil_get_i32(&p[20]);
     a->integral_band_cm = hil_get_i32(&p[24]);
     a->rate_hz = hil_get_u16(&p[28]);
-    h->alt_integral_q20[0] = hil_get_i32(&p[30]);
-    h->alt_integral_q20[1] = hil_get_i32(&p[34]);
+    h->cfg.alt_integral_q20[0] = hil_get_i32(&p[30]);
+    h->cfg.alt_integral_q20[1] = hil_get_i32(&p[34]);
     a->protect_cm_s = hil_get_i32(&p[38]);
     a->protect_valid_cm_s = hil_get_i32(&p[42]);
     a->kv_pitch_per_m_s = hil_get_i32(&p[46]);
@@ -139,7 +138,7 @@ static void cfg_alt(hil_fw_t *h, const uint8_t *p)
 
 static void cfg_spd(hil_fw_t *h, const uint8_t *p)
 {
-    ht_speed_hold_params_t *s = &h->spd_staged;
+    ht_speed_hold_params_t *s = &h->cfg.modes.speed;
     s->throttle_trim = hil_get_i16(&p[0]);
     s->throttle_min = hil_get_i16(&p[2]);
     s->throttle_max = hil_get_i16(&p[4]);
@@ -158,10 +157,10 @@ static void cfg_out(hil_fw_t *h, const uint8_t *p)
         nak(h, (uint8_t)HIL_ID_CFG_OUT, (uint8_t)HIL_NAK_BAD_FIELD);
         return;
     }
-    h->out_staged.count = n;
+    h->cfg.out.count = n;
     for (unsigned i = 0; i < 4u; ++i) {
         const uint8_t *r = &p[2u + 14u * i];
-        os_channel_t *ch = &h->out_staged.ch[first + i];
+        os_channel_t *ch = &h->cfg.out.ch[first + i];
         ch->function = r[0];
         ch->reversed = (r[1] != 0u) ? 1u : 0u;
         ch->centre_us = hil_get_u16(&r[2]);
@@ -174,8 +173,47 @@ static void cfg_out(hil_fw_t *h, const uint8_t *p)
     h->have |= HAVE_OUT;
 }
 
-/* Check everything staged, then put it in force with fresh hold states (the
- * altitude integrators from CFG_ALT, clamped as the SIL board does). */
+/* The IMU rate of the step: the control rate (CFG_ALT rate_hz) times the
+ * smallest divider that brings it into the estimator's range (>= 50 Hz). */
+static void rates(fw_config_t *c)
+{
+    const uint16_t rate = (c->modes.alt.rate_hz > 0u) ? c->modes.alt.rate_hz : 1u;
+    uint16_t div = 1u;
+    while ((uint32_t)rate * div < 50u && div < 100u) {
+        div++;
+    }
+    c->modes.rate_hz = rate;
+    c->control_divider = div;
+    c->dcm.imu_rate_hz = (uint16_t)((uint32_t)rate * div > 1000u ? 1000u : rate * div);
+}
+
+/* The ACK of a refused START: which block, which field. */
+static void refused(hil_fw_t *h)
+{
+    const fw_t *fw = &h->fw;
+    uint8_t block = (uint8_t)HIL_ID_CFG_ALT;
+    uint8_t detail = 0u;
+    switch ((fw_bad_block_t)fw->bad) {
+    case FW_BAD_LAW:
+        block = (uint8_t)HIL_ID_CFG_LAW;
+        detail = (uint8_t)fw->bad_sub;
+        break;
+    case FW_BAD_MODES:
+        block = (fw->modes_bad.field == HT_MODES_P_SPEED_HOLD) ? (uint8_t)HIL_ID_CFG_SPD
+                                                                 : (uint8_t)HIL_ID_CFG_ALT;
+        break;
+    case FW_BAD_OUTPUT:
+        block = (uint8_t)HIL_ID_CFG_OUT;
+        detail = (uint8_t)fw->bad_sub;
+        break;
+    default:
+        break; /* the estimator, the guard, the rates: all follow CFG_ALT's rate */
+    }
+    ack(h, (uint8_t)HIL_ACK_REFUSED, block, detail);
+}
+
+/* Check everything staged, then put it in force with fresh states (the
+ * altitude integrators from CFG_ALT, clamped as every host does). */
 static void start(hil_fw_t *h)
 {
     static const uint8_t block_id[4] = {HIL_ID_CFG_LAW, HIL_ID_CFG_ALT, HIL_ID_CFG_SPD,
@@ -187,46 +225,15 @@ static void start(hil_fw_t *h)
             return;
         }
     }
-    for (uint8_t mode = 0; mode < 2u; ++mode) {
-        ht_param_id_t bad = HT_P_NONE;
-        h->law_params.pitch_mode = mode; /* in place: no copy on the stack */
-        if (ht_init(&h->law[mode], &h->law_params, &bad) != HT_OK) {
-            ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_LAW, (uint8_t)bad);
-            return;
-        }
-    }
-    if (ht_alt_hold_check(&h->alt_staged) != HT_HOLD_OK) {
-        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_ALT, 0u);
+    if (h->cfg.out.count > board_servo_count()) {
+        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_OUT, h->cfg.out.count);
         return;
     }
-    if (ht_speed_hold_check(&h->spd_staged) != HT_HOLD_OK) {
-        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_SPD, 0u);
+    rates(&h->cfg);
+    if (fw_init(&h->fw, &h->cfg) == 0) {
+        refused(h);
         return;
     }
-    const ht_upset_guard_params_t ug = HT_UPSET_GUARD_PARAMS_DEFAULT;
-    h->ug = ug;
-    if (ht_upset_guard_check(&h->ug) != HT_UG_OK) {
-        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_ALT, 0u);
-        return;
-    }
-    uint8_t bad_channel = 0u;
-    if (os_config_check(&h->out_staged, &bad_channel) != OS_OK) {
-        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_OUT, bad_channel);
-        return;
-    }
-    if (h->out_staged.count > board_servo_count()) {
-        ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_OUT, h->out_staged.count);
-        return;
-    }
-    h->alt = h->alt_staged;
-    ht_alt_hold_reset(&h->alt_state);
-    const int32_t max_i_q20 = h->alt.max_integral_pitch * 16;
-    h->alt_state.integral_q20[0] = q_clamp32(h->alt_integral_q20[0], -max_i_q20, max_i_q20);
-    h->alt_state.integral_q20[1] = q_clamp32(h->alt_integral_q20[1], -max_i_q20, max_i_q20);
-    h->spd = h->spd_staged;
-    ht_speed_hold_reset(&h->spd_state);
-    ht_upset_guard_reset(&h->ug_state);
-    h->out = h->out_staged;
     h->steps = 0u;
     h->started = 1u;
     ack(h, (uint8_t)HIL_ACK_OK, (uint8_t)HIL_ID_START, 0u);
@@ -240,55 +247,43 @@ void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
     if (h->started == 0u) {
         return;
     }
-    /* outer loops; the altitude hold's integrator follows the measured
-     * orientation (holds.h) */
-    q16_t pitch = in->pitch_ratio;
-    if ((in->flags & HIL_SF_ALTITUDE_HOLD) != 0u) {
-        pitch = ht_alt_hold_step_v(&h->alt, &h->alt_state, in->altitude_cmd_cm, in->altitude_cm,
-                                   in->climb_cm_s, (in->imu.down_q14[2] < 0) ? 1u : 0u,
-                                   in->imu.airspeed_cm_s);
+    fw_nav_t *n = &h->nav;
+    (void)memset(n, 0, sizeof *n);
+    for (unsigned i = 0u; i < 3u; ++i) {
+        n->down_q14[i] = in->imu.down_q14[i];
+        n->gyro_q11_rad_s[i] = in->imu.gyro_q11_rad_s[i];
     }
-    /* nose-low inverted upset: unload, roll upright, then pull (upset_guard.h) */
-    pitch = ht_upset_guard_step(&h->ug, &h->ug_state, in->imu.down_q14[0], in->imu.down_q14[1],
-                                in->imu.down_q14[2],
-                                ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u, pitch);
-    q14_t throttle = in->throttle;
-    if ((in->flags & HIL_SF_SPEED_HOLD) != 0u) {
-        throttle = ht_speed_hold_step(&h->spd, &h->spd_state, in->airspeed_cmd_cm_s,
-                                      in->imu.airspeed_cm_s, pitch);
-    }
-    /* the helical-turn law */
-    ht_input_t *li = &h->law_in;
-    li->x = in->imu.down_q14[0];
-    li->y = in->imu.down_q14[1];
-    li->z = in->imu.down_q14[2];
-    li->turn_rate_rad_s = in->turn_rate_rad_s;
-    li->pitch_ratio = pitch;
-    li->airspeed_cm_s = in->imu.airspeed_cm_s;
-    li->gyro_rad_s[0] = in->imu.gyro_q11_rad_s[0];
-    li->gyro_rad_s[1] = in->imu.gyro_q11_rad_s[1];
-    li->gyro_rad_s[2] = in->imu.gyro_q11_rad_s[2];
-    li->inverted = ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u;
-    const uint8_t mode = ((in->flags & HIL_SF_TILT_CROSS) != 0u) ? 1u : 0u;
-    ht_step(&h->law[mode], li, &o->law);
-    /* the output stage: mixing, trims, travel, end points */
-    h->cmd.aileron = o->law.aileron;
-    h->cmd.elevator = o->law.elevator;
-    h->cmd.rudder = o->law.rudder;
-    h->cmd.throttle = throttle;
-    if (os_compute(&h->out, &h->cmd, h->pulses) != OS_OK) {
-        return;
-    }
-    for (unsigned i = 0; i < HIL_OUT_CHANNELS && i < h->out.count; ++i) {
-        const os_channel_t *ch = &h->out.ch[i];
-        o->pulse_us[i] = h->pulses[i];
-        if (ch->function != (uint8_t)OS_FN_THROTTLE &&
-            (h->pulses[i] <= ch->min_us || h->pulses[i] >= ch->max_us)) {
-            o->servo_clamped = 1u;
+    n->airspeed_cm_s = in->imu.airspeed_cm_s;
+    n->altitude_cm = in->altitude_cm;
+    n->climb_cm_s = in->climb_cm_s;
+    fw_guided_t *g = &h->guided;
+    g->turn_rate_rad_s = in->turn_rate_rad_s;
+    g->pitch_ratio = in->pitch_ratio;
+    g->altitude_cm = in->altitude_cmd_cm;
+    g->airspeed_cm_s = in->airspeed_cmd_cm_s;
+    g->throttle = in->throttle;
+    g->altitude_hold = ((in->flags & HIL_SF_ALTITUDE_HOLD) != 0u) ? 1u : 0u;
+    g->speed_hold = ((in->flags & HIL_SF_SPEED_HOLD) != 0u) ? 1u : 0u;
+    g->inverted = ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u;
+    g->pitch_mode = ((in->flags & HIL_SF_TILT_CROSS) != 0u) ? 1u : 0u;
+    fw_inputs_t *fi = &h->fw_in;
+    (void)memset(fi, 0, sizeof *fi); /* no raw samples in protocol version 2 */
+    fi->guided = g;
+    fi->external = n;
+    /* the frame is one control period: the step runs until its control chain has */
+    for (uint16_t k = 0u; k < h->cfg.control_divider; ++k) {
+        if (fw_step(&h->fw, fi, &h->fw_out) != 0) {
+            break;
         }
     }
-    o->throttle = throttle;
-    o->pitch_cmd = pitch;
+    const fw_output_t *fo = &h->fw_out;
+    for (unsigned i = 0; i < HIL_OUT_CHANNELS && i < fo->pulse_count; ++i) {
+        o->pulse_us[i] = fo->pulse_us[i];
+    }
+    o->law = fo->law;
+    o->throttle = fo->throttle;
+    o->pitch_cmd = fo->pitch_cmd;
+    o->servo_clamped = fo->servo_clamped;
 }
 
 /* --- frames ---------------------------------------------------------------- */
@@ -349,8 +344,8 @@ static void on_sensors(hil_fw_t *h)
         return;
     }
     hil_fw_step(h, &h->in, &h->res);
-    for (uint8_t i = 0; i < h->out.count; ++i) {
-        (void)board_servo_write_us(i, h->pulses[i]);
+    for (uint8_t i = 0; i < h->fw_out.pulse_count; ++i) {
+        (void)board_servo_write_us(i, h->fw_out.pulse_us[i]);
     }
     board_servo_commit();
     h->steps++;

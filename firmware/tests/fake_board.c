@@ -18,7 +18,9 @@ void fake_board_reset(void)
     }
     fake_board.rc_us[2] = 1000u;
     fake_board.sensor_status = BOARD_OK;
-    fake_board.sensors.down_q14[2] = 16384;
+    fake_board.sensors.imu_fresh = 1u;
+    fake_board.sensors.imu.accel_g[2] = -65536; /* level, at rest */
+    fake_board.sensors.airspeed_fresh = 1u;
     fake_board.sensors.airspeed_cm_s = 1500;
     fake_board.last_failsafe = BOARD_FS_NONE;
 }

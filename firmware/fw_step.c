@@ -1,0 +1,372 @@
+/*
+ * fw_step.c - the one firmware step (see fw_step.h). Integer only. It reads
+ * top to bottom in fw_step(): estimator, control-rate gate, navigation
+ * solution, sensor failsafe, commands (guided or modes), upset guard, law,
+ * surfaces, output stage.
+ */
+#include "fw_step.h"
+
+#include <stddef.h>
+#include <string.h>
+
+/* --- configuration ---------------------------------------------------------- */
+
+void fw_config_default(fw_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    (void)memset(cfg, 0, sizeof *cfg);
+    ht_dcm_params_default(&cfg->dcm);
+    const ht_params_t law = HT_PARAMS_DEFAULT;
+    cfg->law = law;
+    ht_modes_params_default(&cfg->modes);
+    const ht_upset_guard_params_t guard = HT_UPSET_GUARD_PARAMS_DEFAULT;
+    cfg->guard = guard;
+    static const uint8_t fn[5] = {OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_THROTTLE, OS_FN_RUDDER,
+                                  OS_FN_AILERON2};
+    cfg->out.count = 5u;
+    for (uint8_t i = 0; i < OS_MAX_CHANNELS; ++i) {
+        os_channel_default(&cfg->out.ch[i], i < 5u ? fn[i] : (uint8_t)OS_FN_NONE);
+    }
+    cfg->out.ch[4].reversed = 1u;
+    cfg->control_divider = (uint16_t)(cfg->dcm.imu_rate_hz / cfg->modes.rate_hz);
+    cfg->imu_timeout_samples = 40u; /* 0.2 s at 200 Hz */
+    cfg->modes_pitch_mode = (uint8_t)HT_PITCH_EARTH_FRAME;
+}
+
+static int refuse(fw_t *fw, fw_bad_block_t block, int32_t sub)
+{
+    fw->bad = (uint8_t)block;
+    fw->bad_sub = sub;
+    fw->ready = 0u;
+    return 0;
+}
+
+int fw_init(fw_t *fw, const fw_config_t *cfg)
+{
+    if (fw == NULL) {
+        return 0;
+    }
+    (void)memset(fw, 0, sizeof *fw);
+    if (cfg == NULL) {
+        return refuse(fw, FW_BAD_NULL, 0);
+    }
+    fw->cfg = cfg;
+    ht_dcm_param_id_t dcm_bad = HT_DCM_P_NONE;
+    if (ht_dcm_init(&fw->dcm, &cfg->dcm, &dcm_bad) != 0) {
+        return refuse(fw, FW_BAD_DCM, (int32_t)dcm_bad);
+    }
+    for (uint8_t mode = 0u; mode < 2u; ++mode) {
+        ht_params_t p = cfg->law;
+        p.pitch_mode = mode;
+        ht_param_id_t bad = HT_P_NONE;
+        if (ht_init(&fw->law[mode], &p, &bad) != HT_OK) {
+            return refuse(fw, FW_BAD_LAW, (int32_t)bad);
+        }
+    }
+    if (cfg->control_divider < 1u || cfg->control_divider > 100u ||
+        (uint32_t)cfg->modes.rate_hz * cfg->control_divider != cfg->dcm.imu_rate_hz) {
+        return refuse(fw, FW_BAD_DIVIDER, 0);
+    }
+    if (cfg->imu_timeout_samples < 1u || cfg->imu_timeout_samples > 10000u) {
+        return refuse(fw, FW_BAD_TIMEOUT, 0);
+    }
+    const uint8_t pm = (cfg->modes_pitch_mode != 0u) ? 1u : 0u;
+    if (ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints, cfg->waypoint_count,
+                      &fw->modes_bad) != 0) {
+        return refuse(fw, FW_BAD_MODES, (int32_t)fw->modes_bad.field);
+    }
+    if (ht_upset_guard_check(&cfg->guard) != HT_UG_OK) {
+        return refuse(fw, FW_BAD_GUARD, 0);
+    }
+    uint8_t bad_channel = 0u;
+    if (os_config_check(&cfg->out, &bad_channel) != OS_OK) {
+        return refuse(fw, FW_BAD_OUTPUT, (int32_t)bad_channel);
+    }
+    ht_dcm_reset(&fw->dcm_state);
+    ht_modes_reset(&fw->modes_state, 0, 0);
+    const int32_t max_i_q20 = cfg->modes.alt.max_integral_pitch * 16;
+    for (unsigned i = 0u; i < 2u; ++i) {
+        fw->modes_state.alt.integral_q20[i] =
+            q_clamp32(cfg->alt_integral_q20[i], -max_i_q20, max_i_q20);
+    }
+    ht_upset_guard_reset(&fw->guard_state);
+    fw->imu_age = cfg->imu_timeout_samples; /* nothing flies before the first sample */
+    fw->ready = 1u;
+    return 1;
+}
+
+/* --- the estimator and the slower sensors (every call) --------------------- */
+
+static uint16_t age16(uint16_t a)
+{
+    return (a == UINT16_MAX) ? a : (uint16_t)(a + 1u);
+}
+
+/* The GPS course in centidegrees [0, 36000) from north/east velocity, for the
+ * start-up alignment only: an octant and a linear interpolation of the
+ * tangent (within 4 deg), which the yaw aiding then corrects. */
+static uint16_t course_cdeg(int32_t vn, int32_t ve)
+{
+    int32_t an = (vn < 0) ? -(vn / 2) : vn / 2; /* halved: no overflow at INT32_MIN */
+    int32_t ae = (ve < 0) ? -(ve / 2) : ve / 2;
+    while (an > 32767 || ae > 32767) { /* at most 16 halvings: lo * 4500 fits */
+        an /= 2;
+        ae /= 2;
+    }
+    const int32_t hi = (an > ae) ? an : ae;
+    const int32_t lo = (an > ae) ? ae : an;
+    /* atan(lo/hi) ~ 45 deg * lo/hi, in cdeg (hi > 0 past the speed gate) */
+    int32_t a = (lo * 4500) / ((hi > 0) ? hi : 1);
+    if (ae > an) {
+        a = 9000 - a; /* angle from north towards east in the first quadrant */
+    }
+    int32_t c;
+    if (vn >= 0) {
+        c = (ve >= 0) ? a : 36000 - a;
+    } else {
+        c = (ve >= 0) ? 18000 - a : 18000 + a;
+    }
+    return (uint16_t)((c >= 36000) ? c - 36000 : c);
+}
+
+static int32_t ground_speed2(const board_gps_t *g)
+{
+    /* in (cm/s)^2 / 256: fits int32 up to 740 m/s */
+    const int32_t vn = g->vel_ned_cm_s[0] / 16;
+    const int32_t ve = g->vel_ned_cm_s[1] / 16;
+    return vn * vn + ve * ve;
+}
+
+static void estimate(fw_t *fw, const fw_inputs_t *in)
+{
+    const fw_config_t *cfg = fw->cfg;
+    const board_gps_t *g = &in->sensors.gps;
+    const uint8_t fix3 = (g->fix >= 3u) ? 1u : 0u;
+    if (in->sensors.airspeed_fresh != 0u) {
+        fw->nav.airspeed_cm_s = in->sensors.airspeed_cm_s;
+        fw->airspeed_live = 1u;
+    }
+    if (in->sensors.imu_fresh != 0u) {
+        fw->imu_age = 0u;
+        if (fw->aligned == 0u) {
+            const int32_t min_v = cfg->dcm.gps_min_speed_cm_s / 16;
+            const uint8_t course_ok =
+                (fix3 != 0u && ground_speed2(g) > min_v * min_v) ? 1u : 0u;
+            const uint16_t course =
+                (course_ok != 0u) ? course_cdeg(g->vel_ned_cm_s[0], g->vel_ned_cm_s[1]) : 0u;
+            if (ht_dcm_align(&fw->dcm, &fw->dcm_state, in->sensors.imu.accel_g, course_ok, course) == 0) {
+                fw->aligned = 1u;
+            }
+        }
+        ht_dcm_aiding_t aid;
+        (void)memset(&aid, 0, sizeof aid);
+        aid.gps_fix = fix3;
+        aid.gps_fresh = (g->fresh != 0u && fix3 != 0u) ? 1u : 0u;
+        aid.vel_ned_cm_s[0] = g->vel_ned_cm_s[0];
+        aid.vel_ned_cm_s[1] = g->vel_ned_cm_s[1];
+        aid.vel_ned_cm_s[2] = g->vel_ned_cm_s[2];
+        aid.airspeed_valid = fw->airspeed_live;
+        aid.airspeed_cm_s = fw->nav.airspeed_cm_s;
+        ht_dcm_update(&fw->dcm, &fw->dcm_state, &in->sensors.imu, &aid);
+    } else {
+        fw->imu_age = age16(fw->imu_age);
+    }
+
+    if (g->fresh != 0u && fix3 != 0u) {
+        if (fw->have_home == 0u && ht_geo_origin_set(&fw->home, g->lat_e7, g->lon_e7) == 0) {
+            fw->have_home = 1u;
+        }
+        ht_geo_to_local(&fw->home, g->lat_e7, g->lon_e7, &fw->nav.north_cm, &fw->nav.east_cm);
+        fw->nav.vel_north_cm_s = g->vel_ned_cm_s[0];
+        fw->nav.vel_east_cm_s = g->vel_ned_cm_s[1];
+        fw->nav.climb_cm_s = -g->vel_ned_cm_s[2];
+    }
+    if (in->sensors.baro_fresh != 0u) {
+        fw->nav.altitude_cm = in->sensors.baro_alt_cm;
+        fw->have_baro = 1u;
+    }
+}
+
+/* The estimate's navigation solution, once per control step. */
+static void navigation(fw_t *fw, const fw_inputs_t *in, const ht_dcm_output_t *est)
+{
+    fw_nav_t *n = &fw->nav;
+    for (unsigned i = 0u; i < 3u; ++i) {
+        n->down_q14[i] = est->r[2][i];
+        n->gyro_q11_rad_s[i] = q_sat16(q_rshift_round(est->gyro_rad_s[i], 5u));
+    }
+    /* the nose in earth axes: column 1 of R */
+    n->heading_north = est->r[0][1];
+    n->heading_east = est->r[1][1];
+    /* Without a 3-D fix the climb rate comes from the baro: its difference
+     * per control step, filtered over 32 steps (0.8 s at 40 Hz). */
+    if (in->sensors.gps.fix < 3u && fw->have_baro != 0u) {
+        const int32_t rate = fw->cfg->modes.rate_hz;
+        const int32_t raw = q_clamp32(n->altitude_cm - fw->baro_prev_cm, -100000, 100000) * rate;
+        fw->baro_climb_cm_s += (raw - fw->baro_climb_cm_s) / 32;
+        n->climb_cm_s = fw->baro_climb_cm_s;
+    }
+    fw->baro_prev_cm = n->altitude_cm;
+}
+
+/* --- the control chain (every control_divider-th call) --------------------- */
+
+static void law_input(ht_input_t *li, const fw_nav_t *nav)
+{
+    li->x = nav->down_q14[0];
+    li->y = nav->down_q14[1];
+    li->z = nav->down_q14[2];
+    li->airspeed_cm_s = nav->airspeed_cm_s;
+    li->gyro_rad_s[0] = nav->gyro_q11_rad_s[0];
+    li->gyro_rad_s[1] = nav->gyro_q11_rad_s[1];
+    li->gyro_rad_s[2] = nav->gyro_q11_rad_s[2];
+}
+
+/* Guided: holds -> upset guard -> law; the surfaces go straight to the mixer. */
+static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_output_t *o,
+                   os_command_t *cmd)
+{
+    ht_modes_state_t *st = &fw->modes_state;
+    const uint8_t inverted = (c->inverted != 0u) ? 1u : 0u;
+    q16_t pitch = c->pitch_ratio;
+    if (c->altitude_hold != 0u) {
+        /* the integrator follows the measured orientation (holds.h) */
+        pitch = ht_alt_hold_step_v(&fw->modes.alt, &st->alt, c->altitude_cm, nav->altitude_cm,
+                                   nav->climb_cm_s, (nav->down_q14[2] < 0) ? 1u : 0u,
+                                   nav->airspeed_cm_s);
+    }
+    pitch = ht_upset_guard_step(&fw->cfg->guard, &fw->guard_state, nav->down_q14[0],
+                                nav->down_q14[1], nav->down_q14[2], inverted, pitch);
+    q14_t throttle = c->throttle;
+    if (c->speed_hold != 0u) {
+        throttle = ht_speed_hold_step(&fw->modes.speed, &st->speed, c->airspeed_cm_s,
+                                      nav->airspeed_cm_s, pitch);
+    }
+    ht_input_t *li = &o->law_in;
+    law_input(li, nav);
+    li->turn_rate_rad_s = c->turn_rate_rad_s;
+    li->pitch_ratio = pitch;
+    li->inverted = inverted;
+    const uint8_t pm = (c->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
+    ht_step(&fw->law[pm], li, &o->law);
+    cmd->aileron = o->law.aileron;
+    cmd->elevator = o->law.elevator;
+    cmd->rudder = o->law.rudder;
+    cmd->throttle = throttle;
+    o->throttle = throttle;
+    o->pitch_cmd = pitch;
+}
+
+/* The pilot: RC -> flight modes (targets, holds, AoA model) -> upset guard
+ * -> law -> the modes' surface blend. */
+static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_output_t *o,
+                  os_command_t *cmd)
+{
+    ht_modes_input_t mi;
+    (void)memset(&mi, 0, sizeof mi);
+    const uint8_t n = (in->rc_count > FW_RC_MAX) ? (uint8_t)FW_RC_MAX : in->rc_count;
+    for (uint8_t i = 0u; i < n; ++i) {
+        mi.rc_us[i] = in->rc_us[i];
+    }
+    mi.rc_count = n;
+    mi.rc_fresh = in->rc_fresh;
+    mi.x = nav->down_q14[0];
+    mi.y = nav->down_q14[1];
+    mi.z = nav->down_q14[2];
+    mi.gyro_rad_s[0] = nav->gyro_q11_rad_s[0];
+    mi.gyro_rad_s[1] = nav->gyro_q11_rad_s[1];
+    mi.gyro_rad_s[2] = nav->gyro_q11_rad_s[2];
+    mi.airspeed_cm_s = nav->airspeed_cm_s;
+    mi.north_cm = nav->north_cm;
+    mi.east_cm = nav->east_cm;
+    mi.alt_cm = nav->altitude_cm;
+    mi.climb_cm_s = nav->climb_cm_s;
+    mi.vel_north_cm_s = nav->vel_north_cm_s;
+    mi.vel_east_cm_s = nav->vel_east_cm_s;
+    mi.heading_north = nav->heading_north;
+    mi.heading_east = nav->heading_east;
+    ht_modes_step(&fw->modes, &fw->modes_state, &mi, &o->modes);
+    ht_input_t *li = &o->modes.law_in;
+    li->pitch_ratio = ht_upset_guard_step(&fw->cfg->guard, &fw->guard_state, li->x, li->y, li->z,
+                                          li->inverted, li->pitch_ratio);
+    o->law_in = *li;
+    const uint8_t pm = (fw->cfg->modes_pitch_mode != 0u) ? 1u : 0u;
+    ht_step(&fw->law[pm], li, &o->law);
+    ht_modes_surfaces(&o->modes, &o->law, cmd);
+    o->throttle = o->modes.throttle;
+    o->pitch_cmd = li->pitch_ratio;
+}
+
+static void output_stage(const fw_config_t *cfg, const os_command_t *cmd, fw_output_t *o)
+{
+    if (os_compute(&cfg->out, cmd, o->pulse_us) != OS_OK) {
+        (void)os_failsafe(&cfg->out, o->pulse_us);
+        o->failsafe = 1u;
+    }
+    o->pulse_count = cfg->out.count;
+    for (uint8_t i = 0u; i < cfg->out.count; ++i) {
+        const os_channel_t *ch = &cfg->out.ch[i];
+        if (ch->function != (uint8_t)OS_FN_THROTTLE && ch->function != (uint8_t)OS_FN_NONE &&
+            (o->pulse_us[i] <= ch->min_us || o->pulse_us[i] >= ch->max_us)) {
+            o->servo_clamped = 1u;
+        }
+    }
+}
+
+/* --- the step ---------------------------------------------------------------- */
+
+int fw_step(fw_t *fw, const fw_inputs_t *in, fw_output_t *out)
+{
+    if (fw == NULL || in == NULL || out == NULL) {
+        return 0;
+    }
+    out->control_ran = 0u;
+    if (fw->ready == 0u) {
+        out->pulse_count = 0u; /* a refused configuration: no pulses at all */
+        return 0;
+    }
+    const fw_config_t *cfg = fw->cfg;
+    fw->samples++;
+
+    /* 1. the attitude estimate, every IMU sample; GPS, baro, pitot as they come */
+    estimate(fw, in);
+
+    /* 2. the control rate */
+    fw->divider_count++;
+    if (fw->divider_count < cfg->control_divider) {
+        return 0;
+    }
+    fw->divider_count = 0u;
+    fw->control_steps++;
+    (void)memset(out, 0, sizeof *out);
+    out->control_ran = 1u;
+
+    /* 3. the navigation solution the control flies on */
+    ht_dcm_output(&fw->dcm_state, &out->est);
+    navigation(fw, in, &out->est);
+    const fw_nav_t *nav = (in->external != NULL) ? in->external : &fw->nav;
+    out->nav = *nav;
+
+    /* 4. no IMU (and no external solution): every channel to its failsafe */
+    if (in->external == NULL && fw->imu_age >= cfg->imu_timeout_samples) {
+        out->failsafe = 1u;
+        (void)os_failsafe(&cfg->out, out->pulse_us);
+        out->pulse_count = cfg->out.count;
+        return 1;
+    }
+
+    /* 5. commands -> holds -> upset guard -> law -> surfaces */
+    os_command_t cmd;
+    if (in->guided != NULL) {
+        guided(fw, in->guided, nav, out, &cmd);
+    } else {
+        pilot(fw, in, nav, out, &cmd);
+    }
+    out->guard_engaged = fw->guard_state.engaged;
+
+    /* 6. mixer and output stage -> pulses */
+    output_stage(cfg, &cmd, out);
+    return 1;
+}

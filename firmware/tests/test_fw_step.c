@@ -1,0 +1,203 @@
+/*
+ * test_fw_step.c - the one firmware step: configuration refusals, the
+ * control-rate gate, the IMU-loss failsafe, the estimator feeding the law,
+ * the guided path against the holds/guard/law/output stage called by hand,
+ * and the pilot path's RC-loss policy (the modes' one).
+ */
+#include "unity.h"
+
+#include "fw_step.h"
+
+#include <string.h>
+
+static fw_config_t cfg;
+static fw_t fw;
+static fw_inputs_t in;
+static fw_output_t out;
+
+void setUp(void)
+{
+    fw_config_default(&cfg);
+    memset(&in, 0, sizeof in);
+    memset(&out, 0, sizeof out);
+    in.sensors.imu_fresh = 1u;
+    in.sensors.imu.accel_g[2] = -Q16_ONE; /* level, at rest */
+    in.sensors.airspeed_fresh = 1u;
+    in.sensors.airspeed_cm_s = 2000;
+    in.sensors.baro_fresh = 1u;
+    in.sensors.baro_alt_cm = 10000;
+}
+
+void tearDown(void) {}
+
+static int run_until_control(void)
+{
+    for (unsigned k = 1u; k <= 1000u; ++k) {
+        if (fw_step(&fw, &in, &out) != 0) {
+            return (int)k;
+        }
+    }
+    return 0;
+}
+
+static void test_refusals_name_the_block(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, fw_init(&fw, NULL));
+    TEST_ASSERT_EQUAL_UINT8(FW_BAD_NULL, fw.bad);
+    cfg.law.kp_aileron = 65 * Q16_ONE;
+    TEST_ASSERT_EQUAL_INT(0, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_UINT8(FW_BAD_LAW, fw.bad);
+    TEST_ASSERT_EQUAL_INT32(HT_P_KP_AILERON, fw.bad_sub);
+    fw_config_default(&cfg);
+    cfg.dcm.imu_rate_hz = 20u;
+    TEST_ASSERT_EQUAL_INT(0, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_UINT8(FW_BAD_DCM, fw.bad);
+    fw_config_default(&cfg);
+    cfg.control_divider = 4u; /* 40 Hz * 4 != 200 Hz */
+    TEST_ASSERT_EQUAL_INT(0, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_UINT8(FW_BAD_DIVIDER, fw.bad);
+    fw_config_default(&cfg);
+    cfg.out.ch[0].min_us = 2500u;
+    TEST_ASSERT_EQUAL_INT(0, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_UINT8(FW_BAD_OUTPUT, fw.bad);
+    /* a refused configuration never produces a pulse */
+    TEST_ASSERT_EQUAL_INT(0, fw_step(&fw, &in, &out));
+    TEST_ASSERT_EQUAL_UINT8(0u, out.pulse_count);
+    TEST_ASSERT_EQUAL_INT(0, fw_step(NULL, &in, &out));
+    TEST_ASSERT_EQUAL_INT(0, fw_step(&fw, NULL, &out));
+}
+
+static void test_control_runs_every_divider_samples(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_INT(5, run_until_control()); /* 200 Hz / 40 Hz */
+    TEST_ASSERT_EQUAL_INT(5, run_until_control());
+    TEST_ASSERT_EQUAL_UINT32(10u, fw.samples);
+    TEST_ASSERT_EQUAL_UINT32(2u, fw.control_steps);
+    TEST_ASSERT_EQUAL_UINT8(5u, out.pulse_count);
+}
+
+static void test_level_imu_gives_a_level_estimate_to_the_law(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    for (int k = 0; k < 200; ++k) { /* one second */
+        (void)run_until_control();
+    }
+    TEST_ASSERT_INT_WITHIN(2, 0, out.nav.down_q14[0]);
+    TEST_ASSERT_INT_WITHIN(2, 0, out.nav.down_q14[1]);
+    TEST_ASSERT_INT_WITHIN(2, Q14_ONE, out.nav.down_q14[2]);
+    TEST_ASSERT_EQUAL_INT16(out.nav.down_q14[2], out.law_in.z);
+    TEST_ASSERT_EQUAL_INT16(2000, out.law_in.airspeed_cm_s);
+    TEST_ASSERT_EQUAL_INT32(10000, out.nav.altitude_cm);
+    TEST_ASSERT_TRUE((out.est.flags & HT_DCM_F_ALIGNED) != 0u);
+}
+
+static void test_imu_loss_gives_the_failsafe_pulses(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_UINT8(0u, out.failsafe);
+    in.sensors.imu_fresh = 0u;
+    int k = 0;
+    while (out.failsafe == 0u && k < 100) {
+        (void)run_until_control();
+        ++k;
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, out.failsafe);
+    /* within the timeout (40 samples = 8 control steps) and not before */
+    TEST_ASSERT_EQUAL_INT(8, k);
+    uint16_t fs[OS_MAX_CHANNELS];
+    TEST_ASSERT_EQUAL_INT(OS_OK, os_failsafe(&cfg.out, fs));
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(fs, out.pulse_us, cfg.out.count);
+    /* an external solution keeps flying without an IMU (the SIL's truth) */
+    fw_nav_t nav;
+    memset(&nav, 0, sizeof nav);
+    nav.down_q14[2] = Q14_ONE;
+    nav.airspeed_cm_s = 2000;
+    in.external = &nav;
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_UINT8(0u, out.failsafe);
+}
+
+/* The guided path is the holds, the guard, the law and the output stage in
+ * that order: the same calls by hand give the same pulses. */
+static void test_guided_path_is_the_library_chain(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    fw_nav_t nav;
+    memset(&nav, 0, sizeof nav);
+    nav.down_q14[0] = -5000; /* banked right */
+    nav.down_q14[2] = 15600;
+    nav.gyro_q11_rad_s[1] = 300;
+    nav.airspeed_cm_s = 2500;
+    nav.altitude_cm = 9000;
+    nav.climb_cm_s = -50;
+    fw_guided_t g;
+    memset(&g, 0, sizeof g);
+    g.turn_rate_rad_s = Q11_FROM_REAL(0.3);
+    g.altitude_hold = 1u;
+    g.altitude_cm = 10000;
+    g.speed_hold = 1u;
+    g.airspeed_cm_s = 2200;
+    in.external = &nav;
+    in.guided = &g;
+    (void)run_until_control();
+
+    ht_alt_hold_state_t alt;
+    ht_alt_hold_reset(&alt);
+    ht_speed_hold_state_t spd;
+    ht_speed_hold_reset(&spd);
+    ht_upset_guard_state_t ug;
+    ht_upset_guard_reset(&ug);
+    q16_t pitch = ht_alt_hold_step_v(&cfg.modes.alt, &alt, 10000, 9000, -50, 0u, 2500);
+    pitch = ht_upset_guard_step(&cfg.guard, &ug, -5000, 0, 15600, 0u, pitch);
+    const q14_t thr = ht_speed_hold_step(&cfg.modes.speed, &spd, 2200, 2500, pitch);
+    ht_controller_t ctl;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, &cfg.law, NULL));
+    const ht_input_t li = {-5000, 0, 15600, Q11_FROM_REAL(0.3), pitch, 2500, {0, 300, 0}, 0u};
+    ht_output_t lo;
+    ht_step(&ctl, &li, &lo);
+    const os_command_t cmd = {lo.aileron, lo.elevator, lo.rudder, thr};
+    uint16_t pulses[OS_MAX_CHANNELS];
+    TEST_ASSERT_EQUAL_INT(OS_OK, os_compute(&cfg.out, &cmd, pulses));
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(pulses, out.pulse_us, cfg.out.count);
+    TEST_ASSERT_EQUAL_INT32(pitch, out.pitch_cmd);
+    TEST_ASSERT_EQUAL_INT16(thr, out.throttle);
+    TEST_ASSERT_EQUAL_MEMORY(&lo, &out.law, sizeof lo);
+}
+
+/* The pilot path: no RC ever -> manual, neutral, throttle 0; a good RC
+ * then lost -> the modes' failsafe (RTH) after rc_loss_ticks. */
+static void test_pilot_path_rc_loss_policy(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_UINT8(HT_MODE_MANUAL, out.modes.mode);
+    TEST_ASSERT_EQUAL_UINT8(0u, out.modes.failsafe);
+    in.rc_count = 8u;
+    const uint16_t rc[8] = {1500u, 1500u, 1100u, 1500u, 1500u, 1000u, 1500u, 1500u};
+    memcpy(in.rc_us, rc, sizeof rc);
+    in.rc_fresh = 1u;
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_UINT8(HT_MODE_FBW, out.modes.mode);
+    in.rc_fresh = 0u;
+    unsigned k = 0u;
+    while (out.modes.failsafe == 0u && k < 100u) {
+        (void)run_until_control();
+        ++k;
+    }
+    TEST_ASSERT_EQUAL_UINT32(cfg.modes.rc_loss_ticks, k);
+    TEST_ASSERT_EQUAL_UINT8(HT_MODE_RTH, out.modes.mode);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_refusals_name_the_block);
+    RUN_TEST(test_control_runs_every_divider_samples);
+    RUN_TEST(test_level_imu_gives_a_level_estimate_to_the_law);
+    RUN_TEST(test_imu_loss_gives_the_failsafe_pulses);
+    RUN_TEST(test_guided_path_is_the_library_chain);
+    RUN_TEST(test_pilot_path_rc_loss_policy);
+    return UNITY_END();
+}
