@@ -51,19 +51,19 @@ typedef enum {
 
 /* Parameters, physical units as integers (no float on the board). */
 typedef struct {
-    uint16_t imu_rate_hz;        /* one ht_dcm_update per sample, [50, 1000]; default 200 */
-    q16_t kp_rollpitch;          /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
-    q16_t ki_rollpitch;          /* 1/s^2, [0, 4]; default 0.002 */
-    q16_t kp_yaw;                /* 1/s, [0, 16]; default 0.5 */
-    q16_t ki_yaw;                /* 1/s^2, [0, 4]; default 0.005 */
-    q16_t gyro_bias_max_rad_s;   /* bound of each bias component, [0, 1]; default 0.1 */
-    q16_t gyro_limit_rad_s;      /* the gyro's full scale: |w| >= this flags saturation,
-                                    [1, 64]; default 34.9 (2000 deg/s) */
-    q16_t accel_limit_g;         /* the accelerometer's full scale, [1, 32]; default 16 */
-    q16_t accel_band_g;          /* the gravity reference's weight falls linearly from 1
-                                    at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5 */
-    int16_t gps_min_speed_cm_s;  /* course used for yaw above this, [0, 10000]; default 300 */
-    uint8_t centripetal;         /* ht_dcm_cf_t; default HT_DCM_CF_AUTO */
+    uint16_t imu_rate_hz;       /* one ht_dcm_update per sample, [50, 1000]; default 200 */
+    q16_t kp_rollpitch;         /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
+    q16_t ki_rollpitch;         /* 1/s^2, [0, 4]; default 0.002 */
+    q16_t kp_yaw;               /* 1/s, [0, 16]; default 0.5 */
+    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.005 */
+    q16_t gyro_bias_max_rad_s;  /* bound of each bias component, [0, 1]; default 0.1 */
+    q16_t gyro_limit_rad_s;     /* the gyro's full scale: |w| >= this flags saturation,
+                                   [1, 64]; default 34.9 (2000 deg/s) */
+    q16_t accel_limit_g;        /* the accelerometer's full scale, [1, 32]; default 16 */
+    q16_t accel_band_g;         /* the gravity reference's weight falls linearly from 1
+                                   at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5 */
+    int16_t gps_min_speed_cm_s; /* course used for yaw above this, [0, 10000]; default 300 */
+    uint8_t centripetal;        /* ht_dcm_cf_t; default HT_DCM_CF_AUTO */
 } ht_dcm_params_t;
 
 /* Fills p with the defaults above. */
@@ -92,7 +92,14 @@ const char *ht_dcm_param_name(ht_dcm_param_id_t id);
  * formats are the implementation's (see dcm.c). */
 typedef struct {
     ht_dcm_params_t p;
-    int32_t dt_q30;        /* 1 / imu_rate_hz in s, Q30 */
+    int32_t dt_q30;         /* 1 / imu_rate_hz in s, Q30 */
+    int32_t kp_rp_dt_q32;   /* kp_rollpitch * dt, Q32 */
+    int32_t kp_yaw_dt_q32;  /* kp_yaw * dt, Q32 */
+    int32_t ki_rp_dt_q34;   /* ki_rollpitch * dt, Q34 */
+    int32_t ki_yaw_dt_q34;  /* ki_yaw * dt, Q34 */
+    int32_t bias_max_q30;   /* gyro_bias_max in rad/s, Q30 */
+    int32_t inv_band_q30;   /* 1 / accel_band: mantissa (q_recip_q30) ... */
+    uint8_t inv_band_shift; /* ... and the shift that gives the weight in Q16 */
     uint8_t ready;
 } ht_dcm_t;
 
@@ -108,33 +115,34 @@ typedef struct {
 /* The slower aiding measurements, given with every sample (flags say what
  * is new or valid). */
 typedef struct {
-    uint8_t gps_fix;          /* nonzero: the velocity below is a valid 3D fix */
-    uint8_t gps_fresh;        /* nonzero: a new GPS solution arrived since the last sample */
-    int32_t vel_ned_cm_s[3];  /* GPS ground velocity, north, east, down */
-    uint8_t airspeed_valid;   /* nonzero: airspeed_cm_s is a live reading */
+    uint8_t gps_fix;         /* nonzero: the velocity below is a valid 3D fix */
+    uint8_t gps_fresh;       /* nonzero: a new GPS solution arrived since the last sample */
+    int32_t vel_ned_cm_s[3]; /* GPS ground velocity, north, east, down */
+    uint8_t airspeed_valid;  /* nonzero: airspeed_cm_s is a live reading */
     int16_t airspeed_cm_s;
-    uint8_t mag_valid;        /* nonzero: mag is a fresh magnetometer reading */
-    int16_t mag[3];           /* body axes, any scale (only the direction is used) */
+    uint8_t mag_valid;            /* nonzero: mag is a fresh magnetometer reading */
+    int16_t mag[3];               /* body axes, any scale (only the direction is used) */
     int16_t mag_declination_cdeg; /* east-positive, added to the magnetic heading */
 } ht_dcm_aiding_t;
 
 /* Health flags (ht_dcm_state_t.flags, ht_dcm_output_t.flags). */
 enum ht_dcm_flag {
-    HT_DCM_F_ALIGNED = 1u << 0,        /* ht_dcm_align has run (or the first sample did) */
-    HT_DCM_F_GYRO_SATURATED = 1u << 1, /* this sample: a gyro axis at its full scale */
-    HT_DCM_F_ACCEL_SATURATED = 1u << 2,/* this sample: an accelerometer axis at its full scale */
-    HT_DCM_F_ACCEL_IGNORED = 1u << 3,  /* this sample: |f| outside the band, no roll/pitch aid */
-    HT_DCM_F_RENORM_FAILED = 1u << 4,  /* a row's norm left [0.5, 1.5]: R was reset from the
-                                          accelerometer (latched until ht_dcm_reset) */
-    HT_DCM_F_YAW_AIDED = 1u << 5,      /* this sample: yaw corrected from GPS course / mag */
-    HT_DCM_F_BIAS_LIMITED = 1u << 6,   /* a bias component sits on its bound */
-    HT_DCM_F_CF_GPS = 1u << 7          /* this sample's centripetal term used GPS velocity */
+    HT_DCM_F_ALIGNED = 1u << 0,         /* ht_dcm_align has run (or the first sample did) */
+    HT_DCM_F_GYRO_SATURATED = 1u << 1,  /* this sample: a gyro axis at its full scale */
+    HT_DCM_F_ACCEL_SATURATED = 1u << 2, /* this sample: an accelerometer axis at its full scale */
+    HT_DCM_F_ACCEL_IGNORED = 1u << 3,   /* this sample: |f| outside the band, no roll/pitch aid */
+    HT_DCM_F_RENORM_FAILED = 1u << 4,   /* a row's norm left [0.5, 1.5]: R was reset from the
+                                           accelerometer (latched until ht_dcm_reset) */
+    HT_DCM_F_YAW_AIDED = 1u << 5,       /* this sample: yaw corrected from GPS course / mag */
+    HT_DCM_F_BIAS_LIMITED = 1u << 6,    /* a bias component sits on its bound */
+    HT_DCM_F_CF_GPS = 1u << 7           /* this sample's centripetal term used GPS velocity */
 };
 
 typedef struct {
-    int32_t r[3][3];           /* the matrix, internal format (dcm.c) */
-    int32_t bias[3];           /* integral of the PI loop = gyro-bias estimate, internal */
-    int32_t omega_corr[3];     /* last proportional correction, internal */
+    int32_t r[3][3];       /* the matrix, Q30 (2^30 = 1.0) */
+    int32_t bias[3];       /* integral of the PI loop = gyro-bias estimate, rad/s, Q30 */
+    int32_t omega_corr[3]; /* last proportional correction, rad/s, Q16 */
+    q16_t rate_rad_s[3];   /* last sample's gyro (clamped to its full scale) - bias, Q16 */
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;
@@ -157,12 +165,12 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
                    const ht_dcm_aiding_t *aid);
 
 typedef struct {
-    q14_t r[3][3];              /* R rounded to Q14; r[2] is the law's tilt row */
-    q16_t gyro_bias_rad_s[3];   /* bias estimate */
-    int16_t roll_cdeg;          /* telemetry Euler angles: (-18000, 18000] */
-    int16_t pitch_cdeg;         /* [-9000, 9000] */
-    uint16_t yaw_cdeg;          /* [0, 36000) */
-    q16_t gyro_rad_s[3];        /* the last sample's rates minus the bias (for the law) */
+    q14_t r[3][3];            /* R rounded to Q14; r[2] is the law's tilt row */
+    q16_t gyro_bias_rad_s[3]; /* bias estimate */
+    int16_t roll_cdeg;        /* telemetry Euler angles: (-18000, 18000] */
+    int16_t pitch_cdeg;       /* [-9000, 9000] */
+    uint16_t yaw_cdeg;        /* [0, 36000) */
+    q16_t gyro_rad_s[3];      /* the last sample's rates minus the bias (for the law) */
     uint16_t flags;
 } ht_dcm_output_t;
 

@@ -1,0 +1,521 @@
+/*
+ * dcm.c - the attitude estimator's sample step (include/helical/dcm.h):
+ * propagation of the direction cosine matrix, renormalization, and the PI
+ * drift correction from gravity, GPS course and magnetometer.
+ *
+ * Formats (docs/estimator.md has the precision argument and the measured
+ * drift):
+ *   R            Q30 in int32 (2^30 = 1.0): a rounding is 9.3e-10, so 10^6
+ *                samples of rounding cannot move the attitude by 1e-5 rad.
+ *   theta = w dt Q30 rad per sample, clamped to +/-0.5 rad per axis.
+ *   bias         Q30 rad/s (bound <= 1 rad/s).
+ *   errors       Q30 (sines of the attitude errors), weights Q16.
+ *   rates, accel Q16 rad/s and g, as the caller gives them.
+ */
+#include <stddef.h>
+
+#include "dcm_trig.h"
+#include "helical/dcm.h"
+#include "q_inline.h"
+
+#define Q30_ONE HT_DCM_Q30_ONE
+/* The largest rotation of one sample about each axis: 0.5 rad keeps every
+ * element of R + R x theta below 2 (Q30's limit) for unit rows, and is
+ * 100 rad/s at 200 Hz: beyond, the first-order step is meaningless anyway. */
+#define THETA_MAX_Q30 ((int32_t)0x20000000)
+/* A row's squared norm outside [0.25, 2.25] (Q29) is a failure. */
+#define NORM2_MIN_Q29    ((int32_t)0x08000000)
+#define NORM2_MAX_Q29    ((int32_t)1207959552)
+#define THREE_HALVES_Q30 ((int32_t)0x60000000) /* 3 * 2^29: (3 - n) / 2 in Q30 */
+/* Velocities are clamped to +/-655 m/s before any product. */
+#define V_MAX_CM_S 65535
+/* (65536 / 980.665) * 2^24: cm/s in Q8 to g*s in Q16 with a shift of 32. */
+#define CM_S_Q8_TO_GS_Q16_Q24 ((int32_t)1121189833)
+/* Alignment refuses a gravity reference below 0.5 g. */
+#define ALIGN_MIN_G_Q16 ((int32_t)32768)
+/* Flags that survive from one sample to the next. */
+#define FLAGS_KEPT ((uint16_t)(HT_DCM_F_ALIGNED | HT_DCM_F_RENORM_FAILED))
+
+static int32_t clamp32(int32_t x, int32_t lim)
+{
+    if (x > lim) {
+        return lim;
+    }
+    if (x < -lim) {
+        return -lim;
+    }
+    return x;
+}
+
+/* a x b of Q30 vectors, each component saturated. */
+static void cross_q30(const int32_t a[3], const int32_t b[3], int32_t out[3])
+{
+    out[0] = qi_sub_sat32(qi_mul32(a[1], b[2], 30u), qi_mul32(a[2], b[1], 30u));
+    out[1] = qi_sub_sat32(qi_mul32(a[2], b[0], 30u), qi_mul32(a[0], b[2], 30u));
+    out[2] = qi_sub_sat32(qi_mul32(a[0], b[1], 30u), qi_mul32(a[1], b[0], 30u));
+}
+
+/* Sum of a_i * b_i / 2^shift, saturated. */
+static int32_t dot_sat(const int32_t a[3], const int32_t b[3], unsigned shift)
+{
+    int32_t s = qi_mul32(a[0], b[0], shift);
+    s = qi_add_sat32(s, qi_mul32(a[1], b[1], shift));
+    return qi_add_sat32(s, qi_mul32(a[2], b[2], shift));
+}
+
+/*
+ * R from a specific-force vector (gravity reference: earth-down is -f / |f|)
+ * and the nose's horizontal direction (cos psi, sin psi) in Q30. Returns 1
+ * without touching r when |f| < 0.5 g. Any attitude: the horizontal
+ * reference is the nose, or the right wing when the nose is within 7 degrees
+ * of vertical (its azimuth is then psi + 90 degrees).
+ */
+static int align_rows(int32_t r[3][3], const q16_t f_g[3], int32_t c_q30, int32_t s_q30)
+{
+    int32_t u[3];
+    if (q_unit3_q28(f_g, u) == 0) {
+        return 1;
+    }
+    const int32_t mag_q16 = dot_sat(f_g, u, 28u);
+    if (mag_q16 < ALIGN_MIN_G_Q16) {
+        return 1;
+    }
+    int32_t dn[3]; /* earth-down in body axes, Q30 */
+    for (unsigned i = 0u; i < 3u; i++) {
+        dn[i] = -(u[i] * 4); /* |u| <= 2^28 */
+    }
+    int32_t h[3];
+    int32_t c = c_q30;
+    int32_t s = s_q30;
+    /* |horizontal nose|^2 = 1 - d1^2 < 1/64: use the right wing (-X) */
+    const int32_t d1sq = qi_mul32_fit(dn[1], dn[1], 30u);
+    if (Q30_ONE - d1sq < (Q30_ONE / 64)) {
+        /* -X - (-X . d) d = [-1 + d0^2, d0 d1, d0 d2] */
+        h[0] = qi_mul32_fit(dn[0], dn[0], 30u) - Q30_ONE;
+        h[1] = qi_mul32_fit(dn[0], dn[1], 30u);
+        h[2] = qi_mul32_fit(dn[0], dn[2], 30u);
+        c = -s_q30; /* cos(psi + 90), sin(psi + 90) */
+        s = c_q30;
+    } else {
+        /* Y - (Y . d) d = [-d1 d0, 1 - d1^2, -d1 d2] */
+        h[0] = -qi_mul32_fit(dn[1], dn[0], 30u);
+        h[1] = Q30_ONE - d1sq;
+        h[2] = -qi_mul32_fit(dn[1], dn[2], 30u);
+    }
+    int32_t hu[3];
+    (void)q_unit3_q28(h, hu); /* |h|^2 >= 1/64: never zero */
+    for (unsigned i = 0u; i < 3u; i++) {
+        hu[i] *= 4;
+    }
+    int32_t k[3];
+    cross_q30(dn, hu, k); /* d x h: 90 degrees clockwise of h seen from above */
+    /* north = c h - s k, east = s h + c k */
+    for (unsigned i = 0u; i < 3u; i++) {
+        r[0][i] = qi_mul32_fit(c, hu[i], 30u) - qi_mul32_fit(s, k[i], 30u);
+        r[1][i] = qi_mul32_fit(s, hu[i], 30u) + qi_mul32_fit(c, k[i], 30u);
+        r[2][i] = dn[i];
+    }
+    return 0;
+}
+
+static void zero3(int32_t v[3])
+{
+    v[0] = 0;
+    v[1] = 0;
+    v[2] = 0;
+}
+
+void ht_dcm_reset(ht_dcm_state_t *s)
+{
+    if (s == NULL) {
+        return;
+    }
+    const ht_dcm_state_t z = {0};
+    *s = z;
+    s->r[0][0] = Q30_ONE;
+    s->r[1][1] = Q30_ONE;
+    s->r[2][2] = Q30_ONE;
+}
+
+int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
+                 uint8_t heading_valid, uint16_t heading_cdeg)
+{
+    if (d == NULL || s == NULL || accel_g == NULL || d->ready == 0u) {
+        return 2;
+    }
+    int32_t cd = (heading_valid != 0u) ? (int32_t)(heading_cdeg % 36000u) : 0;
+    if (cd > 18000) {
+        cd -= 36000;
+    }
+    int32_t c;
+    int32_t sn;
+    ht_dcm_sincos_q30(ht_dcm_cdeg_to_bam(cd), &c, &sn);
+    if (align_rows(s->r, accel_g, c, sn) != 0) {
+        return 1;
+    }
+    zero3(s->bias);
+    zero3(s->omega_corr);
+    s->flags = (uint16_t)((s->flags & HT_DCM_F_RENORM_FAILED) | HT_DCM_F_ALIGNED);
+    return 0;
+}
+
+/* Clamp a sample to the sensors' full scales, flagging an axis at its limit. */
+static uint16_t clamp_sample(const ht_dcm_t *d, const ht_imu_sample_t *imu, q16_t gyro[3],
+                             q16_t acc[3])
+{
+    uint16_t f = 0u;
+    const int32_t gl = d->p.gyro_limit_rad_s;
+    const int32_t al = d->p.accel_limit_g;
+    for (unsigned i = 0u; i < 3u; i++) {
+        const int32_t g = imu->gyro_rad_s[i];
+        const int32_t a = imu->accel_g[i];
+        if (g >= gl || g <= -gl) {
+            f |= (uint16_t)HT_DCM_F_GYRO_SATURATED;
+        }
+        if (a >= al || a <= -al) {
+            f |= (uint16_t)HT_DCM_F_ACCEL_SATURATED;
+        }
+        gyro[i] = clamp32(g, gl);
+        acc[i] = clamp32(a, al);
+    }
+    return f;
+}
+
+/* The velocity for the centripetal term, body axes, cm/s in Q8 (0 when none). */
+static uint16_t cf_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_dcm_aiding_t *a,
+                            int32_t v_q8[3])
+{
+    zero3(v_q8);
+    if (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) {
+        int32_t vn[3];
+        for (unsigned i = 0u; i < 3u; i++) {
+            vn[i] = clamp32(a->vel_ned_cm_s[i], V_MAX_CM_S);
+        }
+        /* R^T v: |.| <= 3 * 1.5 * 65535 * 2^8, fits */
+        for (unsigned j = 0u; j < 3u; j++) {
+            int32_t acc = 0;
+            for (unsigned i = 0u; i < 3u; i++) {
+                acc = qi_add_sat32(acc, qi_mul32(r[i][j], vn[i], 22u));
+            }
+            v_q8[j] = acc;
+        }
+        return (uint16_t)HT_DCM_F_CF_GPS;
+    }
+    if (d->p.centripetal != (uint8_t)HT_DCM_CF_OFF && a->airspeed_valid != 0u &&
+        a->airspeed_cm_s > 0) {
+        v_q8[1] = (int32_t)a->airspeed_cm_s * 256;
+    }
+    return 0u;
+}
+
+/* The gravity reference's weight in Q16 for a magnitude in g (Q16). */
+static int32_t accel_weight_q16(const ht_dcm_t *d, int32_t mag_q16)
+{
+    const int32_t dev = (mag_q16 >= Q16_ONE) ? (mag_q16 - Q16_ONE) : (Q16_ONE - mag_q16);
+    const int32_t band = d->p.accel_band_g;
+    if (dev >= band) {
+        return 0;
+    }
+    if (dev == 0) {
+        return Q16_ONE;
+    }
+    /* (band - dev) / band: the reciprocal's 1e-6 can overshoot 1 by 0.07 LSB */
+    const int32_t w = qi_mul32(band - dev, d->inv_band_q30, d->inv_band_shift);
+    return (w > Q16_ONE) ? Q16_ONE : w;
+}
+
+/*
+ * Roll/pitch error (Q30, already weighted): the measured earth-down
+ * dm = (w x v - f) / |w x v - f| against R's bottom row, e = dm x R[2]: a
+ * rotation about e turns R[2] toward dm. Returns the flags it sets.
+ */
+static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
+                                const ht_dcm_aiding_t *a, const q16_t acc[3], uint16_t flags,
+                                int32_t e[3])
+{
+    zero3(e);
+    int32_t v_q8[3];
+    uint16_t f = cf_velocity(d, s->r, a, v_q8);
+    int32_t v_gs[3]; /* g*s, Q16 */
+    for (unsigned i = 0u; i < 3u; i++) {
+        v_gs[i] = qi_mul32(v_q8[i], CM_S_Q8_TO_GS_Q16_Q24, 32u);
+    }
+    /* w x v in g (Q16): |w| <= 65 rad/s, |v| <= 117 g*s: fits */
+    const int32_t *w = s->rate_rad_s;
+    int32_t g[3];
+    g[0] = qi_sub_sat32(qi_mul32(w[1], v_gs[2], 16u), qi_mul32(w[2], v_gs[1], 16u));
+    g[1] = qi_sub_sat32(qi_mul32(w[2], v_gs[0], 16u), qi_mul32(w[0], v_gs[2], 16u));
+    g[2] = qi_sub_sat32(qi_mul32(w[0], v_gs[1], 16u), qi_mul32(w[1], v_gs[0], 16u));
+    for (unsigned i = 0u; i < 3u; i++) {
+        g[i] = qi_sub_sat32(g[i], acc[i]);
+    }
+    int32_t u[3];
+    int32_t wt = 0;
+    if (q_unit3_q28(g, u) != 0 && (flags & (uint16_t)HT_DCM_F_ACCEL_SATURATED) == 0u) {
+        wt = accel_weight_q16(d, dot_sat(g, u, 28u));
+    }
+    if (wt == 0) {
+        return (uint16_t)(f | HT_DCM_F_ACCEL_IGNORED);
+    }
+    int32_t dm[3];
+    for (unsigned i = 0u; i < 3u; i++) {
+        dm[i] = u[i] * 4; /* Q28 -> Q30, |u| <= 2^28 */
+    }
+    int32_t c[3];
+    cross_q30(dm, s->r[2], c);
+    for (unsigned i = 0u; i < 3u; i++) {
+        e[i] = qi_mul32(c[i], wt, 16u);
+    }
+    return f;
+}
+
+/*
+ * Yaw error (Q30) between a current and a wanted horizontal direction, both
+ * unit in Q28: the vertical component of their cross product (the sine of
+ * the angle to turn, + = clockwise from above), or +/-1 beyond 90 degrees
+ * so that the pull never fades at a large error.
+ */
+static int32_t yaw_between(int32_t an, int32_t ae, int32_t bn, int32_t be)
+{
+    const int32_t cr = qi_mul32_fit(an, be, 26u) - qi_mul32_fit(ae, bn, 26u);
+    const int32_t dt = qi_mul32_fit(an, bn, 26u) + qi_mul32_fit(ae, be, 26u);
+    if (dt < 0) {
+        return (cr >= 0) ? Q30_ONE : -Q30_ONE;
+    }
+    return cr;
+}
+
+/* The yaw error in Q30 from the GPS course or the magnetometer, 0 without. */
+static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
+                         uint16_t *flags)
+{
+    const int32_t(*r)[3] = s->r;
+    int32_t nn;
+    int32_t ne;
+    if (q_unit2_q28(r[0][1], r[1][1], &nn, &ne) == 0) {
+        return 0; /* nose vertical: no heading */
+    }
+    if (a->gps_fix != 0u) {
+        int32_t cn;
+        int32_t ce;
+        const int32_t vn = a->vel_ned_cm_s[0];
+        const int32_t ve = a->vel_ned_cm_s[1];
+        if (q_unit2_q28(vn, ve, &cn, &ce) != 0) {
+            const int32_t speed = qi_add_sat32(qi_mul32(vn, cn, 28u), qi_mul32(ve, ce, 28u));
+            if (speed > (int32_t)d->p.gps_min_speed_cm_s) {
+                *flags |= (uint16_t)HT_DCM_F_YAW_AIDED;
+                return yaw_between(nn, ne, cn, ce);
+            }
+        }
+    }
+    if (a->mag_valid != 0u) {
+        /* the field in earth axes; its horizontal part should point to
+         * magnetic north, declination east of true north */
+        int32_t mh[2] = {0, 0};
+        for (unsigned i = 0u; i < 2u; i++) {
+            for (unsigned j = 0u; j < 3u; j++) {
+                mh[i] = qi_add_sat32(mh[i], qi_mul32(r[i][j], a->mag[j], 16u));
+            }
+        }
+        int32_t mn;
+        int32_t me;
+        if (q_unit2_q28(mh[0], mh[1], &mn, &me) != 0) {
+            int32_t decl = (int32_t)a->mag_declination_cdeg % 36000;
+            decl = (decl > 18000) ? (decl - 36000) : decl;
+            decl = (decl <= -18000) ? (decl + 36000) : decl;
+            int32_t c;
+            int32_t sn;
+            ht_dcm_sincos_q30(ht_dcm_cdeg_to_bam(decl), &c, &sn);
+            *flags |= (uint16_t)HT_DCM_F_YAW_AIDED;
+            return yaw_between(mn, me, qi_rshift_round(c, 2u), qi_rshift_round(sn, 2u));
+        }
+    }
+    return 0;
+}
+
+/*
+ * R <- R (I + [theta]x + [theta]x^2 / 2): each row r becomes
+ * r + c + (c x theta) / 2 with c = r x theta. The second-order term is what
+ * makes I + ... a rotation to O(theta^4): with the first-order step alone the
+ * rows are stretched by theta^2 / 2 across the axis, and the row-wise
+ * renormalization turns that stretch into a rotation error of about
+ * theta^2 / 2 per sample (5e-3 rad per turn at 1 rad/s and 200 Hz; 1.5
+ * degrees in one 5 rad/s roll). With it the error is the angle's own
+ * truncation, theta^3 / 6 per sample (2.6e-5 rad per turn at 1 rad/s).
+ */
+static void cross_theta(const int32_t a[3], const int32_t th[3], unsigned shift, int32_t c[3])
+{
+    /* |a_i| < 2 and |theta| <= 0.5: each product fits */
+    c[0] = qi_sub_sat32(qi_mul32_fit(a[1], th[2], shift), qi_mul32_fit(a[2], th[1], shift));
+    c[1] = qi_sub_sat32(qi_mul32_fit(a[2], th[0], shift), qi_mul32_fit(a[0], th[2], shift));
+    c[2] = qi_sub_sat32(qi_mul32_fit(a[0], th[1], shift), qi_mul32_fit(a[1], th[0], shift));
+}
+
+static void propagate(int32_t r[3][3], const int32_t th[3])
+{
+    for (unsigned k = 0u; k < 3u; k++) {
+        int32_t c[3];
+        int32_t c2[3];
+        cross_theta(r[k], th, 30u, c);
+        cross_theta(c, th, 31u, c2); /* (c x theta) / 2 */
+        for (unsigned i = 0u; i < 3u; i++) {
+            r[k][i] = qi_add_sat32(r[k][i], qi_add_sat32(c[i], c2[i]));
+        }
+    }
+}
+
+/*
+ * Renormalization: the orthogonality error of rows 0 and 1 shared half and
+ * half, row 2 = row 0 x row 1, each row scaled by (3 - |r|^2) / 2 (which is
+ * exact in Q30 from |r|^2 in Q29). Returns nonzero when a row's squared norm
+ * is outside [0.25, 2.25] (R is then not usable).
+ */
+static int renormalize(int32_t r[3][3])
+{
+    const int32_t err = dot_sat(r[0], r[1], 30u);
+    int32_t a[3];
+    int32_t b[3];
+    for (unsigned i = 0u; i < 3u; i++) {
+        a[i] = qi_sub_sat32(r[0][i], qi_mul32(err, r[1][i], 31u));
+        b[i] = qi_sub_sat32(r[1][i], qi_mul32(err, r[0][i], 31u));
+    }
+    for (unsigned i = 0u; i < 3u; i++) {
+        r[0][i] = a[i];
+        r[1][i] = b[i];
+    }
+    cross_q30(a, b, r[2]);
+    int fail = 0;
+    for (unsigned k = 0u; k < 3u; k++) {
+        const int32_t n_q29 = dot_sat(r[k], r[k], 31u);
+        if (n_q29 < NORM2_MIN_Q29 || n_q29 > NORM2_MAX_Q29) {
+            fail = 1;
+        } else {
+            const int32_t scale_q30 = THREE_HALVES_Q30 - n_q29;
+            for (unsigned i = 0u; i < 3u; i++) {
+                /* |r| <= 1.5, scale <= 1.375: fits */
+                r[k][i] = qi_mul32_fit(r[k][i], scale_q30, 30u);
+            }
+        }
+    }
+    return fail;
+}
+
+/* After a renormalization failure: R from this sample's gravity reference
+ * with the last good heading (level if the accelerometer cannot tell). */
+static void recover(int32_t r[3][3], const q16_t acc[3], int32_t nose_n, int32_t nose_e)
+{
+    int32_t c = Q30_ONE;
+    int32_t s = 0;
+    int32_t cn;
+    int32_t sn;
+    if (q_unit2_q28(nose_n, nose_e, &cn, &sn) != 0) {
+        c = cn * 4;
+        s = sn * 4;
+    }
+    if (align_rows(r, acc, c, s) != 0) {
+        const q16_t level[3] = {0, 0, -Q16_ONE};
+        (void)align_rows(r, level, c, s);
+    }
+}
+
+/* The PI step: bias integral (clamped), proportional correction, and the
+ * rotation of this sample. Returns HT_DCM_F_BIAS_LIMITED or 0. */
+static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3],
+                        const int32_t e_rp[3], const int32_t e_yaw[3], int32_t theta[3])
+{
+    uint16_t f = 0u;
+    const int32_t bmax = d->bias_max_q30;
+    for (unsigned i = 0u; i < 3u; i++) {
+        /* the integral of ki * e is minus the bias */
+        const int32_t inc = qi_add_sat32(qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u),
+                                         qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
+        const int32_t b = clamp32(qi_sub_sat32(s->bias[i], inc), bmax);
+        if (b == bmax || b == -bmax) {
+            f = (uint16_t)HT_DCM_F_BIAS_LIMITED;
+        }
+        s->bias[i] = b;
+        s->omega_corr[i] = qi_add_sat32(qi_mul32(d->p.kp_rollpitch, e_rp[i], 30u),
+                                        qi_mul32(d->p.kp_yaw, e_yaw[i], 30u));
+        /* (gyro - bias) dt + kp dt e, Q30 rad */
+        int32_t t = qi_mul32(gyro[i], d->dt_q30, 16u);
+        t = qi_sub_sat32(t, qi_mul32(b, d->dt_q30, 30u));
+        t = qi_add_sat32(t, qi_mul32(d->kp_rp_dt_q32, e_rp[i], 32u));
+        t = qi_add_sat32(t, qi_mul32(d->kp_yaw_dt_q32, e_yaw[i], 32u));
+        theta[i] = clamp32(t, THETA_MAX_Q30);
+    }
+    return f;
+}
+
+void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *imu,
+                   const ht_dcm_aiding_t *aid)
+{
+    static const ht_dcm_aiding_t no_aiding = {0};
+    if (d == NULL || s == NULL || imu == NULL || d->ready == 0u) {
+        return;
+    }
+    const ht_dcm_aiding_t *a = (aid != NULL) ? aid : &no_aiding;
+    q16_t gyro[3];
+    q16_t acc[3];
+    uint16_t flags = (uint16_t)((s->flags & FLAGS_KEPT) | clamp_sample(d, imu, gyro, acc));
+    if ((flags & (uint16_t)HT_DCM_F_ALIGNED) == 0u) {
+        /* the first usable sample aligns roll and pitch (heading north) */
+        if (align_rows(s->r, acc, Q30_ONE, 0) == 0) {
+            flags |= (uint16_t)HT_DCM_F_ALIGNED;
+            zero3(s->bias);
+        }
+    }
+    for (unsigned i = 0u; i < 3u; i++) {
+        s->rate_rad_s[i] = qi_sub_sat32(gyro[i], qi_rshift_round(s->bias[i], 14u));
+    }
+    int32_t e_rp[3];
+    flags |= rollpitch_error(d, s, a, acc, flags, e_rp);
+    const int32_t ey = yaw_error(d, s, a, &flags);
+    int32_t e_yaw[3]; /* about the earth vertical: along R[2] in body axes */
+    for (unsigned i = 0u; i < 3u; i++) {
+        e_yaw[i] = qi_mul32(ey, s->r[2][i], 30u);
+    }
+    int32_t theta[3];
+    flags |= pi_step(d, s, gyro, e_rp, e_yaw, theta);
+    const int32_t nose_n = s->r[0][1];
+    const int32_t nose_e = s->r[1][1];
+    propagate(s->r, theta);
+    if (renormalize(s->r) != 0) {
+        recover(s->r, acc, nose_n, nose_e);
+        flags |= (uint16_t)HT_DCM_F_RENORM_FAILED;
+    }
+    s->flags = flags;
+    s->samples++; /* wraps after 2^32 samples (248 days at 200 Hz): a counter only */
+}
+
+void ht_dcm_output(const ht_dcm_state_t *s, ht_dcm_output_t *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    const ht_dcm_output_t z = {0};
+    *out = z;
+    if (s == NULL) {
+        return;
+    }
+    for (unsigned i = 0u; i < 3u; i++) {
+        for (unsigned j = 0u; j < 3u; j++) {
+            out->r[i][j] = qi_sat16(qi_rshift_round(s->r[i][j], 16u));
+        }
+        out->gyro_bias_rad_s[i] = qi_rshift_round(s->bias[i], 14u);
+        out->gyro_rad_s[i] = s->rate_rad_s[i];
+    }
+    /* roll = atan2(-R20, R22); pitch = atan2(-R21, |(R20, R22)|), the
+     * CORDIC's magnitude carrying its gain, so -R21 is scaled by it too */
+    int32_t mag_k;
+    const int32_t roll = ht_dcm_atan2_bam(qi_sub_sat32(0, s->r[2][0]), s->r[2][2], &mag_k);
+    const int32_t pitch =
+        ht_dcm_atan2_bam(qi_mul32(s->r[2][1], -HT_CORDIC_GAIN_Q30, 30u), mag_k, NULL);
+    int32_t yaw = ht_dcm_bam_to_cdeg(ht_dcm_atan2_bam(s->r[1][1], s->r[0][1], NULL));
+    if (yaw < 0) {
+        yaw += 36000;
+    }
+    out->roll_cdeg = (int16_t)ht_dcm_bam_to_cdeg(roll);
+    out->pitch_cdeg = (int16_t)ht_dcm_bam_to_cdeg(pitch);
+    out->yaw_cdeg = (uint16_t)((yaw >= 36000) ? 0 : yaw);
+    out->flags = s->flags;
+}

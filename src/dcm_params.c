@@ -1,0 +1,132 @@
+/*
+ * dcm_params.c - the estimator's parameters: defaults, range checks that name
+ * the field, and the one-time conversion into the per-sample formats
+ * (ht_dcm_init). See include/helical/dcm.h and docs/estimator.md.
+ */
+#include <stddef.h>
+
+#include "helical/dcm.h"
+
+static const char *const dcm_param_names[HT_DCM_P_COUNT] = {"",
+                                                            "imu_rate_hz",
+                                                            "kp_rollpitch",
+                                                            "ki_rollpitch",
+                                                            "kp_yaw",
+                                                            "ki_yaw",
+                                                            "gyro_bias_max",
+                                                            "gyro_limit",
+                                                            "accel_limit",
+                                                            "accel_band",
+                                                            "gps_min_speed",
+                                                            "centripetal"};
+
+const char *ht_dcm_param_name(ht_dcm_param_id_t id)
+{
+    if ((int)id <= 0 || (int)id >= (int)HT_DCM_P_COUNT) {
+        return "";
+    }
+    return dcm_param_names[id];
+}
+
+void ht_dcm_params_default(ht_dcm_params_t *p)
+{
+    if (p == NULL) {
+        return;
+    }
+    p->imu_rate_hz = 200u;
+    p->kp_rollpitch = Q16_FROM_REAL(0.2);
+    p->ki_rollpitch = Q16_FROM_REAL(0.002);
+    p->kp_yaw = Q16_FROM_REAL(0.5);
+    p->ki_yaw = Q16_FROM_REAL(0.005);
+    p->gyro_bias_max_rad_s = Q16_FROM_REAL(0.1);
+    p->gyro_limit_rad_s = Q16_FROM_REAL(34.9);
+    p->accel_limit_g = 16 * Q16_ONE;
+    p->accel_band_g = Q16_ONE / 2;
+    p->gps_min_speed_cm_s = 300;
+    p->centripetal = (uint8_t)HT_DCM_CF_AUTO;
+}
+
+static int in_range(q16_t v, q16_t lo, q16_t hi)
+{
+    return (v >= lo) && (v <= hi);
+}
+
+/* The first parameter out of its documented range, or HT_DCM_P_NONE. */
+static ht_dcm_param_id_t first_bad(const ht_dcm_params_t *p)
+{
+    if (p->imu_rate_hz < 50u || p->imu_rate_hz > 1000u) {
+        return HT_DCM_P_IMU_RATE;
+    }
+    if (!in_range(p->kp_rollpitch, 0, 16 * Q16_ONE)) {
+        return HT_DCM_P_KP_ROLLPITCH;
+    }
+    if (!in_range(p->ki_rollpitch, 0, 4 * Q16_ONE)) {
+        return HT_DCM_P_KI_ROLLPITCH;
+    }
+    if (!in_range(p->kp_yaw, 0, 16 * Q16_ONE)) {
+        return HT_DCM_P_KP_YAW;
+    }
+    if (!in_range(p->ki_yaw, 0, 4 * Q16_ONE)) {
+        return HT_DCM_P_KI_YAW;
+    }
+    if (!in_range(p->gyro_bias_max_rad_s, 0, Q16_ONE)) {
+        return HT_DCM_P_BIAS_MAX;
+    }
+    if (!in_range(p->gyro_limit_rad_s, Q16_ONE, 64 * Q16_ONE)) {
+        return HT_DCM_P_GYRO_LIMIT;
+    }
+    if (!in_range(p->accel_limit_g, Q16_ONE, 32 * Q16_ONE)) {
+        return HT_DCM_P_ACCEL_LIMIT;
+    }
+    if (!in_range(p->accel_band_g, 1, 4 * Q16_ONE)) {
+        return HT_DCM_P_ACCEL_BAND;
+    }
+    if (p->gps_min_speed_cm_s < 0 || p->gps_min_speed_cm_s > 10000) {
+        return HT_DCM_P_GPS_MIN_SPEED;
+    }
+    if (p->centripetal > (uint8_t)HT_DCM_CF_AUTO) {
+        return HT_DCM_P_CENTRIPETAL;
+    }
+    return HT_DCM_P_NONE;
+}
+
+int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
+{
+    if (bad != NULL) {
+        *bad = HT_DCM_P_NONE;
+    }
+    if (d == NULL || p == NULL) {
+        return 1;
+    }
+    const ht_dcm_t zero = {0};
+    *d = zero; /* unusable until every check has passed */
+    const ht_dcm_param_id_t b = first_bad(p);
+    if (b != HT_DCM_P_NONE) {
+        if (bad != NULL) {
+            *bad = b;
+        }
+        return 2;
+    }
+    ht_dcm_t c = zero;
+    c.p = *p;
+    /* dt = 1 / rate, Q30, rounded: 2^30 / rate within half an LSB */
+    const uint32_t rate = p->imu_rate_hz;
+    const uint32_t dt_u = ((uint32_t)1u << 30) / rate;
+    const uint32_t rem = ((uint32_t)1u << 30) - (dt_u * rate);
+    c.dt_q30 = (int32_t)(dt_u + (((2u * rem) >= rate) ? 1u : 0u));
+    /* gain * dt: Q16 * Q30 = Q46; kp*dt <= 16 * 0.02 = 0.32 fits Q32, ki*dt <=
+     * 4 * 0.02 = 0.08 fits Q34. Both keep >= 20 significant bits at the
+     * defaults, so the integrator sees increments far below a Q30 LSB. */
+    c.kp_rp_dt_q32 = q_mul32(p->kp_rollpitch, c.dt_q30, 14u);
+    c.kp_yaw_dt_q32 = q_mul32(p->kp_yaw, c.dt_q30, 14u);
+    c.ki_rp_dt_q34 = q_mul32(p->ki_rollpitch, c.dt_q30, 12u);
+    c.ki_yaw_dt_q34 = q_mul32(p->ki_yaw, c.dt_q30, 12u);
+    c.bias_max_q30 = p->gyro_bias_max_rad_s * 16384; /* <= 2^30 */
+    /* 1 / band as a mantissa and exponent: the weight is (band - |dev|) / band */
+    unsigned e = 0u;
+    c.inv_band_q30 = q_recip_q30(p->accel_band_g, &e);
+    c.inv_band_shift = (uint8_t)(14u + e); /* Q16 * Q30 * 2^-(30+e) * 2^16 */
+    c.ready = 1u;
+    *d = c;
+    return 0;
+}

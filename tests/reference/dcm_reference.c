@@ -1,0 +1,318 @@
+/*
+ * dcm_reference.c - the estimator's equations in double (dcm_reference.h).
+ * Written from docs/estimator.md, not from src/dcm.c: no fixed point, no
+ * saturation beyond the documented clamps.
+ */
+#include "dcm_reference.h"
+
+#include <math.h>
+#include <string.h>
+
+#define G_CM_S2 980.665
+
+static double q16r(int32_t v)
+{
+    return (double)v / 65536.0;
+}
+
+void dcmr_params_from(const ht_dcm_params_t *p, dcmr_params_t *o)
+{
+    o->dt = 1.0 / (double)p->imu_rate_hz;
+    o->kp_rp = q16r(p->kp_rollpitch);
+    o->ki_rp = q16r(p->ki_rollpitch);
+    o->kp_yaw = q16r(p->kp_yaw);
+    o->ki_yaw = q16r(p->ki_yaw);
+    o->bias_max = q16r(p->gyro_bias_max_rad_s);
+    o->gyro_limit = q16r(p->gyro_limit_rad_s);
+    o->accel_limit = q16r(p->accel_limit_g);
+    o->band = q16r(p->accel_band_g);
+    o->gps_min_speed_cm_s = (double)p->gps_min_speed_cm_s;
+    o->centripetal = p->centripetal;
+}
+
+static void cross(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double clampd(double x, double lim)
+{
+    return x > lim ? lim : (x < -lim ? -lim : x);
+}
+
+void dcmr_reset(dcmr_state_t *s)
+{
+    memset(s, 0, sizeof *s);
+    s->r[0][0] = s->r[1][1] = s->r[2][2] = 1.0;
+}
+
+int dcmr_align(dcmr_state_t *s, const double f[3], double psi)
+{
+    const double n = sqrt(dot(f, f));
+    if (n < 0.5) {
+        return 1;
+    }
+    const double d[3] = {-f[0] / n, -f[1] / n, -f[2] / n};
+    double h[3];
+    double c = cos(psi), sn = sin(psi);
+    if (1.0 - d[1] * d[1] < 1.0 / 64.0) {
+        const double w[3] = {-1, 0, 0};
+        const double k = dot(w, d);
+        for (int i = 0; i < 3; i++) {
+            h[i] = w[i] - k * d[i];
+        }
+        const double t = c;
+        c = -sn;
+        sn = t;
+    } else {
+        for (int i = 0; i < 3; i++) {
+            h[i] = (i == 1 ? 1.0 : 0.0) - d[1] * d[i];
+        }
+    }
+    const double hn = sqrt(dot(h, h));
+    for (int i = 0; i < 3; i++) {
+        h[i] /= hn;
+    }
+    double k[3];
+    cross(d, h, k);
+    for (int i = 0; i < 3; i++) {
+        s->r[0][i] = c * h[i] - sn * k[i];
+        s->r[1][i] = sn * h[i] + c * k[i];
+        s->r[2][i] = d[i];
+    }
+    s->bias[0] = s->bias[1] = s->bias[2] = 0.0;
+    s->aligned = 1;
+    return 0;
+}
+
+static double yaw_between(double an, double ae, double bn, double be)
+{
+    const double cr = an * be - ae * bn;
+    if (an * bn + ae * be < 0) {
+        return cr >= 0 ? 1.0 : -1.0;
+    }
+    return cr;
+}
+
+static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_dcm_aiding_t *a)
+{
+    const double nn0 = s->r[0][1], ne0 = s->r[1][1];
+    const double nl = hypot(nn0, ne0);
+    if (nl == 0.0) {
+        return 0.0;
+    }
+    const double nn = nn0 / nl, ne = ne0 / nl;
+    if (a->gps_fix) {
+        const double vn = a->vel_ned_cm_s[0], ve = a->vel_ned_cm_s[1];
+        const double sp = hypot(vn, ve);
+        if (sp > p->gps_min_speed_cm_s) {
+            return yaw_between(nn, ne, vn / sp, ve / sp);
+        }
+    }
+    if (a->mag_valid) {
+        double mh[2] = {0, 0};
+        for (int i = 0; i < 2; i++) {
+            for (int j = 0; j < 3; j++) {
+                mh[i] += s->r[i][j] * a->mag[j];
+            }
+        }
+        const double ml = hypot(mh[0], mh[1]);
+        if (ml > 0.0) {
+            const double dec = a->mag_declination_cdeg / 100.0 * DCMR_PI / 180.0;
+            return yaw_between(mh[0] / ml, mh[1] / ml, cos(dec), sin(dec));
+        }
+    }
+    return 0.0;
+}
+
+void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3],
+                 const double acc_in[3], const ht_dcm_aiding_t *a)
+{
+    double gyro[3], acc[3];
+    int acc_sat = 0;
+    for (int i = 0; i < 3; i++) {
+        gyro[i] = clampd(gyro_in[i], p->gyro_limit);
+        acc[i] = clampd(acc_in[i], p->accel_limit);
+        acc_sat |= fabs(acc_in[i]) >= p->accel_limit;
+    }
+    if (!s->aligned) {
+        (void)dcmr_align(s, acc, 0.0);
+    }
+    for (int i = 0; i < 3; i++) {
+        s->rate[i] = gyro[i] - s->bias[i];
+    }
+    /* gravity reference: (w x v - f) / |.|, v in g*s */
+    double v[3] = {0, 0, 0};
+    if (p->centripetal == HT_DCM_CF_AUTO && a->gps_fix) {
+        for (int j = 0; j < 3; j++) {
+            for (int i = 0; i < 3; i++) {
+                v[j] += s->r[i][j] * clampd(a->vel_ned_cm_s[i], 65535.0);
+            }
+        }
+    } else if (p->centripetal != HT_DCM_CF_OFF && a->airspeed_valid && a->airspeed_cm_s > 0) {
+        v[1] = a->airspeed_cm_s;
+    }
+    for (int i = 0; i < 3; i++) {
+        v[i] /= G_CM_S2;
+    }
+    double g[3];
+    cross(s->rate, v, g);
+    for (int i = 0; i < 3; i++) {
+        g[i] -= acc[i];
+    }
+    const double gm = sqrt(dot(g, g));
+    double w = 0.0;
+    if (gm > 0.0 && !acc_sat) {
+        w = 1.0 - fabs(gm - 1.0) / p->band;
+        w = w < 0.0 ? 0.0 : w;
+    }
+    double erp[3] = {0, 0, 0};
+    if (w > 0.0) {
+        const double dm[3] = {g[0] / gm, g[1] / gm, g[2] / gm};
+        cross(dm, s->r[2], erp);
+        for (int i = 0; i < 3; i++) {
+            erp[i] *= w;
+        }
+    }
+    const double ey = yaw_error(p, s, a);
+    double th[3];
+    for (int i = 0; i < 3; i++) {
+        const double eyb = ey * s->r[2][i];
+        s->bias[i] =
+            clampd(s->bias[i] - (p->ki_rp * erp[i] + p->ki_yaw * eyb) * p->dt, p->bias_max);
+        th[i] = clampd((gyro[i] - s->bias[i] + p->kp_rp * erp[i] + p->kp_yaw * eyb) * p->dt, 0.5);
+    }
+    /* propagate, second order: r <- r + c + (c x theta) / 2, c = r x theta */
+    for (int k = 0; k < 3; k++) {
+        double c[3], c2[3];
+        cross(s->r[k], th, c);
+        cross(c, th, c2);
+        for (int i = 0; i < 3; i++) {
+            s->r[k][i] += c[i] + 0.5 * c2[i];
+        }
+    }
+    /* renormalize */
+    const double err = dot(s->r[0], s->r[1]);
+    double a0[3], a1[3];
+    for (int i = 0; i < 3; i++) {
+        a0[i] = s->r[0][i] - 0.5 * err * s->r[1][i];
+        a1[i] = s->r[1][i] - 0.5 * err * s->r[0][i];
+    }
+    memcpy(s->r[0], a0, sizeof a0);
+    memcpy(s->r[1], a1, sizeof a1);
+    cross(a0, a1, s->r[2]);
+    for (int k = 0; k < 3; k++) {
+        const double sc = 0.5 * (3.0 - dot(s->r[k], s->r[k]));
+        for (int i = 0; i < 3; i++) {
+            s->r[k][i] *= sc;
+        }
+    }
+}
+
+void dcmr_from_euler(double phi, double th, double psi, double r[3][3])
+{
+    const double cf = cos(phi), sf = sin(phi), ct = cos(th), st = sin(th), cp = cos(psi),
+                 sp = sin(psi);
+    /* the FRD body-to-NED matrix C, then columns (X, Y, Z) = (-C.y, C.x, C.z) */
+    const double c[3][3] = {{ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp},
+                            {ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp},
+                            {-st, sf * ct, cf * ct}};
+    for (int i = 0; i < 3; i++) {
+        r[i][0] = -c[i][1];
+        r[i][1] = c[i][0];
+        r[i][2] = c[i][2];
+    }
+}
+
+void dcmr_rotate_body(double r0[3][3], const double w[3], double t, double out[3][3])
+{
+    const double wn = sqrt(dot(w, w));
+    double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    if (wn > 0.0) {
+        const double k[3] = {w[0] / wn, w[1] / wn, w[2] / wn};
+        const double an = wn * t, s = sin(an), c1 = 1.0 - cos(an);
+        const double kx[3][3] = {{0, -k[2], k[1]}, {k[2], 0, -k[0]}, {-k[1], k[0], 0}};
+        for (int i = 0; i < 3; i++) {
+            for (int j = 0; j < 3; j++) {
+                double kk = 0.0;
+                for (int m = 0; m < 3; m++) {
+                    kk += kx[i][m] * kx[m][j];
+                }
+                e[i][j] += s * kx[i][j] + c1 * kk;
+            }
+        }
+    }
+    double o[3][3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            o[i][j] = 0.0;
+            for (int m = 0; m < 3; m++) {
+                o[i][j] += r0[i][m] * e[m][j];
+            }
+        }
+    }
+    memcpy(out, o, sizeof o);
+}
+
+double dcmr_angle_between(double a[3][3], double b[3][3])
+{
+    /* M = A^T B: the rotation from a to b in body axes */
+    double m[3][3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            m[i][j] = 0.0;
+            for (int k = 0; k < 3; k++) {
+                m[i][j] += a[k][i] * b[k][j];
+            }
+        }
+    }
+    const double sx = 0.5 * (m[2][1] - m[1][2]), sy = 0.5 * (m[0][2] - m[2][0]),
+                 sz = 0.5 * (m[1][0] - m[0][1]);
+    const double c = 0.5 * (m[0][0] + m[1][1] + m[2][2] - 1.0);
+    return atan2(sqrt(sx * sx + sy * sy + sz * sz), c);
+}
+
+double dcmr_ortho_err(double r[3][3])
+{
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            const double e = dot(r[i], r[j]) - (i == j ? 1.0 : 0.0);
+            worst = fabs(e) > worst ? fabs(e) : worst;
+        }
+    }
+    return worst;
+}
+
+void dcmr_from_state(const ht_dcm_state_t *s, double r[3][3])
+{
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            r[i][j] = (double)s->r[i][j] / 1073741824.0;
+        }
+    }
+}
+
+void dcmr_to_state(double r[3][3], ht_dcm_state_t *s)
+{
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            s->r[i][j] = (int32_t)llround(r[i][j] * 1073741824.0);
+        }
+    }
+}
+
+void dcmr_euler(double r[3][3], double *roll, double *pitch, double *yaw)
+{
+    *roll = atan2(-r[2][0], r[2][2]);
+    *pitch = atan2(-r[2][1], hypot(r[2][0], r[2][2]));
+    double y = atan2(r[1][1], r[0][1]);
+    *yaw = y < 0 ? y + 2 * DCMR_PI : y;
+}
