@@ -338,23 +338,37 @@ class _TriadErrors:
                  noise_density: float, bias_sigma: float, walk: float, scale_sigma: float,
                  cross_sigma: float, full_scale: float, mount: np.ndarray) -> None:
         c = _rng(seed, const_stream).normal(0.0, 1.0, size=12)  # fixed draw count
-        self.bias = bias_sigma * c[0:3]
+        self.bias = [float(b) for b in bias_sigma * c[0:3]]
         s = np.diag(scale_sigma * c[3:6])
         off = cross_sigma * c[6:12]
         s[0, 1], s[0, 2], s[1, 0], s[1, 2], s[2, 0], s[2, 1] = off
-        self.matrix = (np.eye(3) + s) @ mount  # sensor reads M @ (true value)
+        m = (np.eye(3) + s) @ mount  # the sensor reads m @ (true value)
+        self.matrix = [[float(v) for v in row] for row in m]
         self.rng = _rng(seed, noise_stream)
         self.sigma = noise_density * math.sqrt(rate_hz / 2.0)
         self.walk = walk
-        self.walk_state = np.zeros(3)
+        self.walk_state = [0.0, 0.0, 0.0]
         self.full_scale = full_scale
 
-    def apply(self, true: np.ndarray, dt_s: float) -> tuple[np.ndarray, bool]:
-        w = self.rng.normal(0.0, 1.0, size=6)  # fixed draw count: 3 walk, 3 noise
-        self.walk_state = self.walk_state + self.walk * math.sqrt(dt_s) * w[0:3]
-        v = self.matrix @ true + self.bias + self.walk_state + self.sigma * w[3:6]
-        clipped = np.clip(v, -self.full_scale, self.full_scale)
-        return clipped, bool(np.any(np.abs(v) >= self.full_scale))
+    def apply(self, true: tuple[float, float, float],
+              dt_s: float) -> tuple[tuple[float, float, float], bool]:
+        # plain floats: numpy's per-call overhead on 3-vectors is most of the cost
+        w = self.rng.standard_normal(6).tolist()  # fixed draw count: 3 walk, 3 noise
+        k = self.walk * math.sqrt(dt_s)
+        ws = self.walk_state
+        fs = self.full_scale
+        out = []
+        saturated = False
+        for i in range(3):
+            ws[i] += k * w[i]
+            r = self.matrix[i]
+            v = (r[0] * true[0] + r[1] * true[1] + r[2] * true[2] + self.bias[i] + ws[i]
+                 + self.sigma * w[3 + i])
+            if abs(v) >= fs:
+                saturated = True
+                v = math.copysign(fs, v)
+            out.append(v)
+        return (out[0], out[1], out[2]), saturated
 
 
 class ImuModel:
@@ -374,7 +388,7 @@ class ImuModel:
             cfg.accel.scale_sigma, cfg.accel.cross_axis_sigma, cfg.accel.range_g, mount)
         # vibration: a sinusoid per axis at vibration_hz, random phases
         ph = _rng(seed, STREAM_VIBRATION).uniform(0.0, 2.0 * math.pi, size=6)
-        self.phase_gyro, self.phase_accel = ph[0:3], ph[3:6]
+        self.phase_gyro, self.phase_accel = ph[0:3].tolist(), ph[3:6].tolist()
         self.t_last: float | None = None
 
     def sample(self, s: FdmState, t_s: float) -> ImuSample:
@@ -391,12 +405,16 @@ class ImuModel:
                     f"the model runs at rate_hz={self.cfg.rate_hz:g} (every {period:.6g} s)")
         self.t_last = t_s
         wt = 2.0 * math.pi * self.cfg.vibration_hz * t_s
-        vib_g = self.cfg.gyro.vibration_rad_s * np.sin(wt + self.phase_gyro)
-        vib_a = self.cfg.accel.vibration_g * np.sin(wt + self.phase_accel)
-        g, g_sat = self.gyro.apply(np.array(st.ideal_gyro_rad_s(s)) + vib_g, dt)
-        a, a_sat = self.accel.apply(np.array(st.ideal_accel_g(s)) + vib_a, dt)
-        return ImuSample(t_s, (float(g[0]), float(g[1]), float(g[2])),
-                         (float(a[0]), float(a[1]), float(a[2])), g_sat, a_sat)
+        ag, aa = self.cfg.gyro.vibration_rad_s, self.cfg.accel.vibration_g
+        tg, ta = st.ideal_gyro_rad_s(s), st.ideal_accel_g(s)
+        pg, pa = self.phase_gyro, self.phase_accel
+        g, g_sat = self.gyro.apply((tg[0] + ag * math.sin(wt + pg[0]),
+                                    tg[1] + ag * math.sin(wt + pg[1]),
+                                    tg[2] + ag * math.sin(wt + pg[2])), dt)
+        a, a_sat = self.accel.apply((ta[0] + aa * math.sin(wt + pa[0]),
+                                     ta[1] + aa * math.sin(wt + pa[1]),
+                                     ta[2] + aa * math.sin(wt + pa[2])), dt)
+        return ImuSample(t_s, g, a, g_sat, a_sat)
 
 
 class GpsModel:
