@@ -607,8 +607,7 @@ def model_bias(model: sensors_mod.SensorModel, extra: np.ndarray) -> tuple[float
     """The gyro's true bias now (library axes, rad/s): the model's own plus the
     legacy [sensors] gyro_bias_rad_s."""
     tri = model._imu.gyro  # the model's constant bias and its random walk
-    own = tri.bias + tri.walk_state
-    return tuple(float(o + e) for o, e in zip(own, extra))
+    return tuple(float(b + w + e) for b, w, e in zip(tri.bias, tri.walk_state, extra))
 
 
 def _raw_sensors(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
