@@ -6,15 +6,15 @@
 
 #include "helical/helical_turn.h"
 
-/* Gains above 64 per unit error (or per rad/s) would saturate the surfaces on
- * sensor noise alone; the limit also keeps gain * v_ref / v_min in int32 Q16. */
-#define HT_GAIN_MAX_Q16 (64 * Q16_ONE)
-/* A floor below 1 m/s makes v_ref / S meaningless (and unbounded). */
-#define HT_V_MIN_LOWEST_CM_S 100
-/* |ratio| <= 8 is 82.9 degrees of bank; beyond that the law's target is
- * nearly a knife edge and max_tilt * g stays well inside its format. */
-#define HT_MAX_TILT_LIMIT_Q16 (8 * Q16_ONE)
-/* 980.665 (g in cm/s^2) in Q20: max_tilt (Q16) * g -> Q16 of (rad/s)*(cm/s). */
+#include "q_inline.h"
+
+/* The ranges are public (helical_turn.h). Why they are what they are:
+ * gains above 64 per unit error (or per rad/s) would saturate the surfaces on
+ * sensor noise alone; a floor below 1 m/s makes v_ref / S meaningless (and
+ * unbounded); |ratio| <= 8 is 82.9 degrees of bank, beyond which the law's
+ * target is nearly a knife edge, and max_tilt * g stays well inside its
+ * format. */
+/* 980.665 (g in cm/s^2) in Q20: max_tilt (Q16) * g -> Q18 of (rad/s)*(cm/s). */
 #define HT_G_CM_S2_Q20 1028301783L
 
 static const char *const param_names[HT_P_COUNT] = {
@@ -35,6 +35,29 @@ static int gain_ok(q16_t g)
     return g >= 0 && g <= HT_GAIN_MAX_Q16;
 }
 
+/* a * b (both >= 0) plus c * d (both >= 0) <= limit_hi * 2^32 + limit_lo,
+ * exactly: the products reach 2^37, so they are formed as 64-bit pairs. */
+static int sum_of_products_ok(uint32_t a, uint32_t b, uint32_t c, uint32_t d, u64pair_t limit)
+{
+    const u64pair_t ab = umul32(a, b);
+    const u64pair_t cd = umul32(c, d);
+    const u64pair_t sum = u64_add(ab, cd.hi, cd.lo); /* < 2^39: no carry out */
+    return (sum.hi < limit.hi) || (sum.hi == limit.hi && sum.lo <= limit.lo);
+}
+
+/* The rate gain of one axis, kff * v_ref / v_min + kd * s_p,max, at most
+ * HT_RATE_GAIN_MAX, without a division: kff * v_ref + kd * v_p <= 512 * v_min
+ * with the gains in Q16, v_p = v_ref scheduled, v_min not. */
+static int rate_gain_ok(q16_t kff, q16_t kd, const ht_params_t *p)
+{
+    const uint32_t v_p = (uint32_t)((p->schedule != 0u) ? p->v_ref_cm_s : p->v_min_cm_s);
+    const uint32_t lim = (uint32_t)p->v_min_cm_s * (uint32_t)HT_RATE_GAIN_MAX; /* < 2^24 */
+    u64pair_t limit;                                                           /* lim * 2^16 */
+    limit.hi = lim >> 16;
+    limit.lo = lim << 16;
+    return sum_of_products_ok((uint32_t)kff, (uint32_t)p->v_ref_cm_s, (uint32_t)kd, v_p, limit);
+}
+
 /* The first parameter out of range, or HT_P_NONE. */
 static ht_param_id_t first_bad_param(const ht_params_t *p)
 {
@@ -47,14 +70,26 @@ static ht_param_id_t first_bad_param(const ht_params_t *p)
             return (ht_param_id_t)id;
         }
     }
-    if (p->v_min_cm_s < HT_V_MIN_LOWEST_CM_S || p->v_min_cm_s > INT16_MAX) {
+    if (p->v_min_cm_s < HT_V_MIN_LOWEST_CM_S || p->v_min_cm_s > HT_V_REF_MAX_CM_S) {
         return HT_P_V_MIN;
     }
-    if (p->v_ref_cm_s < p->v_min_cm_s || p->v_ref_cm_s > INT16_MAX) {
+    if (p->v_ref_cm_s < p->v_min_cm_s || p->v_ref_cm_s > HT_V_REF_MAX_CM_S ||
+        p->v_ref_cm_s > HT_SCALE_MAX * p->v_min_cm_s) {
         return HT_P_V_REF;
     }
     if (p->schedule > 1u) {
         return HT_P_SCHEDULE;
+    }
+    /* A rate gain too large for the law to be exact: the axis' kff names it
+     * when kff alone exceeds the limit, else its kd. */
+    const q16_t kffs[3] = {p->kff_aileron, p->kff_elevator, p->kff_rudder};
+    const q16_t kds[3] = {p->kd_aileron, p->kd_elevator, p->kd_rudder};
+    for (int i = 0; i < 3; i++) {
+        if (!rate_gain_ok(kffs[i], kds[i], p)) {
+            const int id = rate_gain_ok(kffs[i], 0, p) ? ((int)HT_P_KD_AILERON + i)
+                                                       : ((int)HT_P_KFF_AILERON + i);
+            return (ht_param_id_t)id;
+        }
     }
     if (p->max_tilt <= 0 || p->max_tilt > HT_MAX_TILT_LIMIT_Q16) {
         return HT_P_MAX_TILT;
@@ -98,7 +133,7 @@ ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id
     c.schedule = params->schedule;
     c.pitch_mode = params->pitch_mode;
     c.max_tilt = params->max_tilt;
-    c.max_tilt_g_q16 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 20);
+    c.max_tilt_g_q18 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 18); /* <= 2.06e9 */
     c.ready = 1u;
     *ctl = c;
     return HT_OK;
