@@ -15,8 +15,8 @@ _Static_assert((-1 >> 1) == -1, "signed right shift must be arithmetic");
 _Static_assert((-3L >> 1) == -2L, "signed right shift must be arithmetic");
 
 /* Powers of two in the Q formats of this file (signed, without a signed shift). */
-#define Q26_ONE_I32 ((int32_t)0x04000000) /* 2^26 */
-#define Q30_ONE_I32 ((int32_t)0x40000000) /* 2^30 */
+#define Q26_ONE_I32   ((int32_t)0x04000000) /* 2^26 */
+#define Q30_ONE_I32   ((int32_t)0x40000000) /* 2^30 */
 
 int16_t q_sat16(int32_t x)
 {
