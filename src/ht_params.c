@@ -6,8 +6,6 @@
 
 #include "helical/helical_turn.h"
 
-#include "q_inline.h"
-
 /* The ranges are public (helical_turn.h). Why they are what they are:
  * gains above 64 per unit error (or per rad/s) would saturate the surfaces on
  * sensor noise alone; a floor below 1 m/s makes v_ref / S meaningless (and
@@ -35,27 +33,21 @@ static int gain_ok(q16_t g)
     return g >= 0 && g <= HT_GAIN_MAX_Q16;
 }
 
-/* a * b (both >= 0) plus c * d (both >= 0) <= limit_hi * 2^32 + limit_lo,
- * exactly: the products reach 2^37, so they are formed as 64-bit pairs. */
-static int sum_of_products_ok(uint32_t a, uint32_t b, uint32_t c, uint32_t d, u64pair_t limit)
-{
-    const u64pair_t ab = umul32(a, b);
-    const u64pair_t cd = umul32(c, d);
-    const u64pair_t sum = u64_add(ab, cd.hi, cd.lo); /* < 2^39: no carry out */
-    return (sum.hi < limit.hi) || (sum.hi == limit.hi && sum.lo <= limit.lo);
-}
-
 /* The rate gain of one axis, kff * v_ref / v_min + kd * s_p,max, at most
- * HT_RATE_GAIN_MAX, without a division: kff * v_ref + kd * v_p <= 512 * v_min
- * with the gains in Q16, v_p = v_ref scheduled, v_min not. */
+ * HT_RATE_GAIN_MAX, exactly and without a division or a 64-bit product:
+ * kff * v_ref + kd * v_p <= 512 * 2^16 * v_min with the gains in Q16 and
+ * v_p = v_ref scheduled, v_min not. The left side reaches 2^38, so each gain
+ * is split at bit 11: sum = hi * 2^11 + lo with hi, lo below 2^27. */
 static int rate_gain_ok(q16_t kff, q16_t kd, const ht_params_t *p)
 {
-    const uint32_t v_p = (uint32_t)((p->schedule != 0u) ? p->v_ref_cm_s : p->v_min_cm_s);
-    const uint32_t lim = (uint32_t)p->v_min_cm_s * (uint32_t)HT_RATE_GAIN_MAX; /* < 2^24 */
-    u64pair_t limit;                                                           /* lim * 2^16 */
-    limit.hi = lim >> 16;
-    limit.lo = lim << 16;
-    return sum_of_products_ok((uint32_t)kff, (uint32_t)p->v_ref_cm_s, (uint32_t)kd, v_p, limit);
+    const uint32_t v_ref = (uint32_t)p->v_ref_cm_s; /* <= 2^15 (checked before) */
+    const uint32_t v_p = (p->schedule != 0u) ? v_ref : (uint32_t)p->v_min_cm_s;
+    const uint32_t kf = (uint32_t)kff, kdu = (uint32_t)kd; /* <= 2^22 */
+    const uint32_t lo = ((kf & 2047u) * v_ref) + ((kdu & 2047u) * v_p);
+    const uint32_t hi = ((kf >> 11) * v_ref) + ((kdu >> 11) * v_p) + (lo >> 11);
+    const uint32_t lim =
+        (uint32_t)p->v_min_cm_s * (uint32_t)HT_RATE_GAIN_MAX * 32u; /* 2^25 v / 2^11 */
+    return (hi < lim) || (hi == lim && (lo & 2047u) == 0u);
 }
 
 /* The first parameter out of range, or HT_P_NONE. */
@@ -82,12 +74,10 @@ static ht_param_id_t first_bad_param(const ht_params_t *p)
     }
     /* A rate gain too large for the law to be exact: the axis' kff names it
      * when kff alone exceeds the limit, else its kd. */
-    const q16_t kffs[3] = {p->kff_aileron, p->kff_elevator, p->kff_rudder};
-    const q16_t kds[3] = {p->kd_aileron, p->kd_elevator, p->kd_rudder};
     for (int i = 0; i < 3; i++) {
-        if (!rate_gain_ok(kffs[i], kds[i], p)) {
-            const int id = rate_gain_ok(kffs[i], 0, p) ? ((int)HT_P_KD_AILERON + i)
-                                                       : ((int)HT_P_KFF_AILERON + i);
+        if (!rate_gain_ok(gains[3 + i], gains[6 + i], p)) {
+            const int kd_named = rate_gain_ok(gains[3 + i], 0, p);
+            const int id = (int)HT_P_KFF_AILERON + i + (3 * kd_named);
             return (ht_param_id_t)id;
         }
     }
