@@ -36,9 +36,9 @@ static q14_t q14_from_q28(int32_t v)
     return qi_sat16(qi_rshift_round(v, 14u));
 }
 
-static q11_t q11_from_q20(int32_t v)
+static q11_t q11_from_q25(int32_t v)
 {
-    return qi_sat16(qi_rshift_round(v, 9u));
+    return qi_sat16(qi_rshift_round(v, 14u));
 }
 
 /* The same roundings where the value is known to fit (|v| <= 1 in Q28, a
@@ -48,9 +48,9 @@ static q14_t q14_from_q28_fit(int32_t v)
     return (q14_t)qi_rshift_round(v, 14u);
 }
 
-static q11_t q11_from_q20_fit(int32_t v)
+static q11_t q11_from_q26_fit(int32_t v)
 {
-    return (q11_t)qi_rshift_round(v, 9u);
+    return (q11_t)qi_rshift_round(v, 15u);
 }
 
 static int32_t sign_unit_q28(int32_t v)
@@ -63,7 +63,7 @@ static int32_t sign_unit_q28(int32_t v)
  * the roll error unchanged and the aileron through the largest scheduled
  * gains (30 x 0.125 LSB). */
 typedef struct {
-    int32_t omega_q20;
+    int32_t omega_q26; /* |.| <= 16 rad/s: 2^30 */
     int32_t ratio_q24; /* |.| <= max_tilt <= 8 after the limit */
     q16_t ratio_q16;   /* the output's rounding of it */
 } turn_t;
@@ -74,6 +74,20 @@ typedef struct {
     unsigned exp;
 } recip_t;
 
+/* 1/S to 2^-30 relative. q_recip_q30 is within 6.3e-8 (2^-24), which the
+ * largest legal rate gain (512 per rad/s) times a 32 rad/s target rate would
+ * turn into 1.6 LSB; one more Newton step, y += y * (1 - S y), squares that.
+ * S is in [100, 32767], so exp is in [6, 14] and S * y / 2^exp is 2^30 within
+ * 6.3e-8: the residual is a few tens of LSB of Q30. */
+static recip_t recip_airspeed(int32_t s_cm_s)
+{
+    recip_t r;
+    r.inv_q30 = q_recip_q30(s_cm_s, &r.exp);
+    const int32_t sy_q30 = qi_mul32x16_fit(r.inv_q30, (int16_t)s_cm_s, r.exp);
+    r.inv_q30 += qi_mul32_fit(r.inv_q30, (int32_t)0x40000000 - sy_q30, 30u);
+    return r;
+}
+
 static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_cm_s, recip_t inv_s,
                          uint8_t *flags)
 {
@@ -81,15 +95,15 @@ static turn_t limit_turn(const ht_controller_t *ctl, q11_t omega_q11, int32_t s_
     int32_t omega_times_s = (int32_t)omega_q11 * s_cm_s; /* |.| <= 2^30 */
     /* saturates beyond 128, far past any max_tilt (<= 8) */
     t.ratio_q24 = qi_mul32(omega_times_s, RATIO_FROM_OMEGA_S, RATIO_Q24_SHIFT);
-    t.omega_q20 = (int32_t)omega_q11 * 512;
+    t.omega_q26 = (int32_t)omega_q11 * 32768;    /* |.| <= 2^30 */
     const int32_t max_q24 = ctl->max_tilt * 256; /* <= 2^27 */
     if (t.ratio_q24 > max_q24 || t.ratio_q24 < -max_q24) {
-        /* max_tilt * g / S: Q16 * Q30 * 2^-(30 + exp) -> Q20 */
-        int32_t omega_max_q20 = qi_mul32_fit(ctl->max_tilt_g_q16, inv_s.inv_q30, 26u + inv_s.exp);
+        /* max_tilt * g / S: Q18 * Q30 * 2^-(30 + exp) -> Q26; below |omega| */
+        int32_t omega_max_q26 = qi_mul32_fit(ctl->max_tilt_g_q18, inv_s.inv_q30, 22u + inv_s.exp);
         *flags |= HT_F_TILT_LIMITED;
         t.ratio_q24 = (t.ratio_q24 > 0) ? max_q24 : -max_q24;
         t.ratio_q16 = (t.ratio_q24 > 0) ? ctl->max_tilt : -ctl->max_tilt;
-        t.omega_q20 = (omega_q11 > 0) ? omega_max_q20 : -omega_max_q20;
+        t.omega_q26 = (omega_q11 > 0) ? omega_max_q26 : -omega_max_q26;
     } else {
         t.ratio_q16 = qi_rshift_round(t.ratio_q24, 8u);
     }
@@ -265,11 +279,14 @@ static void pitch_tilt_cross(const ht_input_t *in, const target_t *tg, int32_t b
  *   d = -kp*s_p*e + kff*s_ff*w_d + kd*s_p*(w_d - g).
  * Scheduled (s_p = s_ff) it is s_ff * ((kff + kd)*w_d - kd*g - kp*e): three
  * products and the scale; unscheduled, s_ff * (kff*w_d) + kd*(w_d - g) - kp*e.
- * Each product is exact before its one rounding; the terms that can exceed
- * int32 (huge rates times large gains) saturate, and so does every sum.
+ * The target rate w_d is Q25 (exact when the tilt limit does not act) and
+ * s_ff Q25, so a rate gain of 512 (ht_init's limit) times s_ff <= 32 does not
+ * amplify a rounding of either beyond a fraction of an LSB. Each product is
+ * exact before its one rounding; the terms that can exceed int32 (huge rates
+ * times large gains) saturate, and so does every sum.
  */
-static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q20,
-                           int32_t e_q28, int32_t rate_d_q20, q11_t gyro_q11)
+static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q25,
+                           int32_t e_q28, int32_t rate_d_q25, q11_t gyro_q11)
 {
     const q16_t kp = ctl->gains.kp[axis];
     const q16_t kff = ctl->gains.kff[axis];
@@ -278,15 +295,14 @@ static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_
     const int32_t p_term = qi_mul32_fit(kp, e_q28, 24u);
     if (ctl->schedule != 0u) {
         const int32_t kd_g = qi_mul32x16_fit(kd, gyro_q11, 7u); /* Q16 * Q11 -> Q20, <= 2^30 */
-        /* (k * 2w) / 2^17 is k * w / 2^16 with the same rounding; shifts of
-         * 17 to 32 take the short path of the partial-product form */
-        int32_t sum = qi_mul32(kff + kd, rate_d_q20 * 2, 17u); /* kff + kd <= 2^23 */
+        int32_t sum = qi_mul32(kff + kd, rate_d_q25, 21u);      /* kff + kd <= 2^23 */
         sum = qi_sub_sat32(qi_sub_sat32(sum, kd_g), p_term);
-        return qi_mul32(sum, s_ff_q20, 20u);
+        return qi_mul32(sum, s_ff_q25, 25u);
     }
-    const int32_t rate_error_q20 = qi_sub_sat32(rate_d_q20, (int32_t)gyro_q11 * 512);
-    int32_t d = qi_mul32(qi_mul32(kff, rate_d_q20 * 2, 17u), s_ff_q20, 20u);
-    d = qi_add_sat32(d, qi_mul32(kd, rate_error_q20 * 2, 17u)); /* |w - g| <= 2^26 */
+    /* |w_d| <= 2^30 and |g| <= 2^29 in Q25: the difference fits */
+    const int32_t rate_error_q25 = rate_d_q25 - ((int32_t)gyro_q11 * 16384);
+    int32_t d = qi_mul32(qi_mul32(kff, rate_d_q25, 21u), s_ff_q25, 25u);
+    d = qi_add_sat32(d, qi_mul32(kd, rate_error_q25, 21u));
     return qi_sub_sat32(d, p_term);
 }
 
@@ -319,18 +335,18 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         s_cm_s = ctl->v_min_cm_s;
         flags |= HT_F_AIRSPEED_FLOORED;
     }
-    recip_t inv_s;
-    inv_s.inv_q30 = q_recip_q30(s_cm_s, &inv_s.exp);
+    const recip_t inv_s = recip_airspeed(s_cm_s);
     turn_t turn = limit_turn(ctl, in->turn_rate_rad_s, s_cm_s, inv_s, &flags);
 
     /* 2-3. Target tilt. */
     const target_t tg = target_tilt(turn.ratio_q24, in->pitch_ratio, in->inverted);
 
-    /* 4. Target body rate from the actual tilt (Eq. 3), Q20 rad/s. */
+    /* 4. Target body rate from the actual tilt (Eq. 3), Q25 rad/s: exact
+     * when the tilt limit does not act (a Q11 times a Q14 value). */
     const q14_t row[3] = {in->x, in->y, in->z};
     int32_t rate_d[3];
     for (unsigned i = 0; i < 3u; i++) {
-        rate_d[i] = qi_mul32x16_fit(turn.omega_q20, row[i], 14u); /* <= 2^25 */
+        rate_d[i] = qi_mul32x16_fit(turn.omega_q26, row[i], 15u); /* <= 16 * 2 * 2^25 = 2^30 */
     }
 
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
@@ -342,26 +358,27 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         pe = pitch_earth_frame(in, &tg, e, &flags);
     }
 
-    /* 9. Airspeed scale, Q20: s_ff = v_ref / S (s_p is s_ff when scheduled, else 1). */
-    int32_t s_ff_q20 = qi_mul32x16_fit(inv_s.inv_q30, ctl->v_ref_cm_s, 10u + inv_s.exp); /* int16 */
+    /* 9. Airspeed scale, Q25: s_ff = v_ref / S <= v_ref / v_min <= 32 (ht_init),
+     * so below 2^30 (s_p is s_ff when scheduled, else 1). */
+    const int32_t s_ff_q25 = qi_mul32x16_fit(inv_s.inv_q30, ctl->v_ref_cm_s, 5u + inv_s.exp);
 
     /* 10-11. Demands and surfaces. */
     o->elevator = surface_from_q20(
-        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q20, e[0], rate_d[0], in->gyro_rad_s[0])),
+        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0])),
         &flags);
     o->aileron = surface_from_q20(
-        axis_demand(ctl, 1u, s_ff_q20, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
-    o->rudder = surface_from_q20(axis_demand(ctl, 2u, s_ff_q20, e[2], rate_d[2], in->gyro_rad_s[2]),
+        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
+    o->rudder = surface_from_q20(axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]),
                                  &flags);
 
-    o->turn_rate_used_rad_s = q11_from_q20_fit(turn.omega_q20);
+    o->turn_rate_used_rad_s = q11_from_q26_fit(turn.omega_q26);
     o->tilt_ratio = turn.ratio_q16;
     o->tilt_x = q14_from_q28_fit(tg.x);
     o->tilt_y = q14_from_q28_fit(tg.y);
     o->tilt_z = q14_from_q28_fit(tg.z);
-    o->rate_x_rad_s = q11_from_q20(rate_d[0]);
-    o->rate_y_rad_s = q11_from_q20(rate_d[1]);
-    o->rate_z_rad_s = q11_from_q20(rate_d[2]);
+    o->rate_x_rad_s = q11_from_q25(rate_d[0]);
+    o->rate_y_rad_s = q11_from_q25(rate_d[1]);
+    o->rate_z_rad_s = q11_from_q25(rate_d[2]);
     o->roll_dot = q14_from_q28(roll_dot);
     o->roll_cross = q14_from_q28(roll_cross);
     o->roll_error = q14_from_q28(e[1]);

@@ -44,6 +44,21 @@ typedef enum {
 } ht_pitch_mode_t;
 
 /*
+ * The legal parameter ranges (ht_init refuses anything outside them). Within
+ * them every surface is within 2 LSB of the double-precision law
+ * (docs/control-law.md, "Accuracy"); the two joint limits are where 32-bit
+ * arithmetic stops being exact: the scale v_ref / v_min, and the rate gain of
+ * each axis, kff * v_ref / v_min + kd * s_p,max (s_p,max = v_ref / v_min with
+ * the schedule, 1 without), which multiplies every error of the target rate.
+ */
+#define HT_GAIN_MAX_Q16       (64 * Q16_ONE) /* every kp, kff, kd in [0, 64] */
+#define HT_V_MIN_LOWEST_CM_S  100            /* v_min in [1 m/s, v_ref] */
+#define HT_V_REF_MAX_CM_S     32767          /* v_ref in [v_min, 327.67 m/s] */
+#define HT_SCALE_MAX          32             /* v_ref <= 32 * v_min */
+#define HT_RATE_GAIN_MAX      512            /* per axis, command per rad/s */
+#define HT_MAX_TILT_LIMIT_Q16 (8 * Q16_ONE)  /* max_tilt in (0, 8] */
+
+/*
  * Parameters, in physical units as integers, so that a board can hold them in
  * flash without any float support. Gains are Q16 (Q16_FROM_REAL(3.0)).
  * Ranges are checked by ht_init().
@@ -52,7 +67,9 @@ typedef struct {
     q16_t kp_aileron, kp_elevator, kp_rudder;    /* command per unit error, [0, 64] */
     q16_t kff_aileron, kff_elevator, kff_rudder; /* command per rad/s at v_ref, [0, 64] */
     q16_t kd_aileron, kd_elevator, kd_rudder;    /* command per rad/s, [0, 64] */
-    int32_t v_ref_cm_s;                          /* airspeed scaling reference, [v_min, 32767] */
+    int32_t v_ref_cm_s;                          /* airspeed scaling reference, [v_min, 32767],
+                                                    at most 32 * v_min; and per axis
+                                                    kff * v_ref / v_min + kd * s_p,max <= 512 */
     int32_t v_min_cm_s;                          /* airspeed floor, [100, 32767] (1 m/s) */
     uint8_t schedule;                            /* 1: kp, kd also scaled by v_ref / S */
     q16_t max_tilt;                              /* limit on |turn_rate * S / g|, (0, 8] */
@@ -115,9 +132,9 @@ typedef struct {
     uint8_t schedule;
     uint8_t pitch_mode;
     q16_t max_tilt;
-    /* max_tilt * g in Q16 of (rad/s)*(cm/s): when the tilt limit clamps, the
-     * turn rate used is max_tilt_g_q16 / S_cm_s. */
-    int32_t max_tilt_g_q16;
+    /* max_tilt * g in Q18 of (rad/s)*(cm/s), below 2^31: when the tilt limit
+     * clamps, the turn rate used is max_tilt_g_q18 / S_cm_s. */
+    int32_t max_tilt_g_q18;
     uint8_t ready; /* 1 after a successful ht_init */
 } ht_controller_t;
 

@@ -124,6 +124,7 @@ void ht_ref_step(const ht_ref_params_t *p, const ht_ref_input_t *in, ht_ref_outp
     for (int i = 0; i < 3; i++) {
         d[i] = -p->kp[i] * s_p * e[i] + p->kff[i] * s_ff * o->rate[i] +
                p->kd[i] * s_p * (o->rate[i] - in->gyro[i]);
+        o->demand[i] = d[i];
     }
     o->aileron = clamp1(d[1]);
     o->elevator = clamp1(-d[0]);

@@ -31,6 +31,9 @@ typedef struct {
     double roll_dot, roll_cross, roll_error;
     double pitch_error, pitch_body_x, pitch_body_z;
     double aileron, elevator, rudder;
+    /* The rotation demand d_X, d_Y, d_Z of step 10 before the clamp of step 11
+     * (aileron = clamp(d_Y), elevator = clamp(-d_X), rudder = clamp(d_Z)). */
+    double demand[3];
     /* Distances to the spec's branch boundaries, for sweeps that must skip
      * inputs on a boundary (where a tie can go either way). */
     double ratio_margin; /* |ratio| - max_tilt before the clamp */

@@ -48,6 +48,20 @@ int32_t ts_fix32(double v, int frac_bits)
     return (int32_t)f;
 }
 
+int ts_on_branch_boundary(const ht_ref_output_t *r, const ht_ref_params_t *p)
+{
+    if (fabs(r->ratio_margin) < TS_BRANCH_EPS) {
+        return 1;
+    }
+    if (fabs(r->roll_dot) < TS_BRANCH_EPS ||
+        (r->roll_dot <= 0 && fabs(r->roll_cross) < TS_BRANCH_EPS)) {
+        return 1;
+    }
+    return p->pitch_mode == HT_PITCH_EARTH_FRAME &&
+           (fabs(r->pitch_agree) < TS_BRANCH_EPS ||
+            (r->pitch_agree <= 0 && fabs(r->pitch_raw) < TS_BRANCH_EPS));
+}
+
 #define GAIN(x) Q16_FROM_REAL(x)
 
 /* Order of the initialisers: kp ail/ele/rud, kff ail/ele/rud, kd ail/ele/rud,

@@ -20,6 +20,16 @@ double ts_gaussian(uint64_t *state);
 int16_t ts_fix16(double v, int frac_bits);
 int32_t ts_fix32(double v, int frac_bits);
 
+/* Distance (real units) under which a branch decision of the spec is a tie
+ * that may go either way; the core's branch quantities are exact to a few
+ * Q28 LSB. */
+#define TS_BRANCH_EPS 1e-4
+
+/* 1 when a step lies within TS_BRANCH_EPS of a branch boundary of the spec
+ * (tilt limit, roll beyond 90 degrees and its sign, pitch beyond 90 degrees
+ * and its sign): the one skip rule of every comparison with the reference. */
+int ts_on_branch_boundary(const ht_ref_output_t *r, const ht_ref_params_t *p);
+
 /* A named parameter set. */
 typedef struct {
     const char *name;

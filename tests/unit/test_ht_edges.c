@@ -309,21 +309,94 @@ static void test_bad_parameters_are_refused_by_name(void)
     p.kp_aileron = 64 * Q16_ONE;
     p.max_tilt = 8 * Q16_ONE;
     p.v_min_cm_s = 100;
-    p.v_ref_cm_s = INT16_MAX;
+    p.v_ref_cm_s = 3200; /* the largest scale, 32 */
     ht_controller_t c;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.v_min_cm_s = 1024;
+    p.v_ref_cm_s = INT16_MAX;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
     TEST_ASSERT_EQUAL_STRING("", ht_param_name(HT_P_COUNT));
 }
 
+/* v_ref / v_min <= 32: at the bound accepted, one cm/s beyond refused. */
+static void test_scale_limit_is_exact(void)
+{
+    ht_params_t p = HT_PARAMS_DEFAULT;
+    p.v_min_cm_s = 500;
+    p.v_ref_cm_s = 16000;
+    ht_controller_t c;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.v_ref_cm_s = 16001;
+    check_refused(p, HT_P_V_REF, "v_ref");
+    /* 32767 needs v_min >= 1024 (1023 * 32 = 32736) */
+    p.v_ref_cm_s = INT16_MAX;
+    p.v_min_cm_s = 1023;
+    check_refused(p, HT_P_V_REF, "v_ref");
+}
+
+/* Per axis kff * v_ref / v_min + kd * s_p,max <= 512, exactly (the products
+ * reach 2^37): at the bound accepted, one Q16 LSB beyond refused, named by
+ * the gain that carries it (kff if kff alone exceeds it, else kd). */
+static void test_rate_gain_limit_is_exact(void)
+{
+    const ht_params_t d = HT_PARAMS_DEFAULT;
+    ht_params_t p = d;
+    ht_controller_t c;
+    /* scheduled, scale 32: (kff + kd) * 32 <= 512 */
+    p.schedule = 1;
+    p.v_min_cm_s = 1000;
+    p.v_ref_cm_s = 32000;
+    p.kff_rudder = 10 * Q16_ONE;
+    p.kd_rudder = 6 * Q16_ONE;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.kd_rudder += 1;
+    check_refused(p, HT_P_KD_RUDDER, "kd_rudder");
+    p.kd_rudder = 0;
+    p.kff_rudder = 16 * Q16_ONE;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.kff_rudder += 1;
+    check_refused(p, HT_P_KFF_RUDDER, "kff_rudder");
+    /* unscheduled: kd is not scaled, kff * 32 + kd <= 512 */
+    p = d;
+    p.v_min_cm_s = 1000;
+    p.v_ref_cm_s = 32000;
+    p.kd_aileron = 64 * Q16_ONE;
+    p.kff_aileron = 14 * Q16_ONE;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.kff_aileron += 1;
+    check_refused(p, HT_P_KD_AILERON, "kd_aileron");
+    /* scale 4, scheduled: every gain at 64 is exactly 512 */
+    p = d;
+    p.schedule = 1;
+    p.v_min_cm_s = 8000;
+    p.v_ref_cm_s = 32000;
+    p.kp_elevator = p.kff_elevator = p.kd_elevator = 64 * Q16_ONE;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
+    p.v_ref_cm_s = 32001;
+    check_refused(p, HT_P_KD_ELEVATOR, "kd_elevator");
+    /* the corner: every gain 64, scale 327, is refused */
+    p = d;
+    p.kp_aileron = p.kp_elevator = p.kp_rudder = 64 * Q16_ONE;
+    p.kff_aileron = p.kff_elevator = p.kff_rudder = 64 * Q16_ONE;
+    p.kd_aileron = p.kd_elevator = p.kd_rudder = 64 * Q16_ONE;
+    p.schedule = 1;
+    p.v_min_cm_s = 100;
+    p.v_ref_cm_s = INT16_MAX;
+    check_refused(p, HT_P_V_REF, "v_ref");
+    p.v_ref_cm_s = 3200;
+    check_refused(p, HT_P_KFF_AILERON, "kff_aileron");
+}
+
 /* The largest parameters with the largest inputs still give bounded output
- * (the Q20 sum saturates instead of wrapping). */
+ * (the Q20 sum saturates instead of wrapping): every gain 64 at the largest
+ * scale that allows it (4, scheduled). */
 static void test_largest_gains_do_not_wrap(void)
 {
     ht_params_t p = HT_PARAMS_DEFAULT;
     p.kp_aileron = p.kp_elevator = p.kp_rudder = 64 * Q16_ONE;
     p.kff_aileron = p.kff_elevator = p.kff_rudder = 64 * Q16_ONE;
     p.kd_aileron = p.kd_elevator = p.kd_rudder = 64 * Q16_ONE;
-    p.v_min_cm_s = 100;
+    p.v_min_cm_s = 8192;
     p.v_ref_cm_s = INT16_MAX;
     p.schedule = 1;
     p.max_tilt = 8 * Q16_ONE;
@@ -335,8 +408,18 @@ static void test_largest_gains_do_not_wrap(void)
     ht_output_t out;
     ht_step(&c, &in, &out);
     assert_bounded(&out);
-    /* the rate term dominates: omega_d = w*[X,Y,Z] minus the gyros */
-    TEST_ASSERT_EQUAL_INT(Q14_ONE, out.aileron);
+    /* and they are the double law's (here the damping of the +16 rad/s roll
+     * gyro dominates: full left aileron) */
+    ht_ref_params_t rp;
+    ht_ref_input_t ri;
+    ht_ref_output_t ro;
+    ht_ref_params_from_controller(&c, &rp);
+    ht_ref_input_from_fixed(&in, &ri);
+    ht_ref_step(&rp, &ri, &ro);
+    TEST_ASSERT_EQUAL_INT(-Q14_ONE, out.aileron);
+    TEST_ASSERT_DOUBLE_WITHIN(TOL_Q14, ro.aileron, out.aileron / 16384.0);
+    TEST_ASSERT_DOUBLE_WITHIN(TOL_Q14, ro.elevator, out.elevator / 16384.0);
+    TEST_ASSERT_DOUBLE_WITHIN(TOL_Q14, ro.rudder, out.rudder / 16384.0);
 }
 
 int main(void)
@@ -353,6 +436,8 @@ int main(void)
     RUN_TEST(test_surface_saturation_flag);
     RUN_TEST(test_null_and_uninitialised_give_zero_surfaces);
     RUN_TEST(test_bad_parameters_are_refused_by_name);
+    RUN_TEST(test_scale_limit_is_exact);
+    RUN_TEST(test_rate_gain_limit_is_exact);
     RUN_TEST(test_largest_gains_do_not_wrap);
     return UNITY_END();
 }

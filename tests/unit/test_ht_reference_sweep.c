@@ -15,9 +15,6 @@
 #include "unity.h"
 
 #define STEPS_PER_SET 100000L
-/* Distance (real units) under which a branch decision is a tie. The core's
- * branch quantities are exact to a few Q16 LSB (1.5e-5 each). */
-#define BRANCH_EPS 1e-4
 
 /* The project's targets are 4 LSB (Q14) for tilt, roll and pitch quantities
  * and 8 LSB for the surfaces; the core does much better, and these limits hold
@@ -61,22 +58,6 @@ static void random_input(uint64_t *rng, ht_input_t *in, regime_t regime)
     in->inverted = (uint8_t)(ts_rng_next(rng) & 1u);
 }
 
-static int on_branch_boundary(const ht_ref_output_t *r, const ht_ref_params_t *p)
-{
-    if (fabs(r->ratio_margin) < BRANCH_EPS) {
-        return 1;
-    }
-    if (fabs(r->roll_dot) < BRANCH_EPS || (r->roll_dot <= 0 && fabs(r->roll_cross) < BRANCH_EPS)) {
-        return 1;
-    }
-    if (p->pitch_mode == HT_PITCH_EARTH_FRAME &&
-        (fabs(r->pitch_agree) < BRANCH_EPS ||
-         (r->pitch_agree <= 0 && fabs(r->pitch_raw) < BRANCH_EPS))) {
-        return 1;
-    }
-    return 0;
-}
-
 static void sweep_gain_set_regime(int set, regime_t regime)
 {
     ht_controller_t ctl;
@@ -98,7 +79,7 @@ static void sweep_gain_set_regime(int set, regime_t regime)
         ht_ref_output_t ro;
         ht_ref_input_from_fixed(&in, &ri);
         ht_ref_step(&rp, &ri, &ro);
-        if (on_branch_boundary(&ro, &rp)) {
+        if (ts_on_branch_boundary(&ro, &rp)) {
             skipped++;
             continue;
         }
@@ -158,6 +139,242 @@ static void test_sweep_tilt_cross(void)
     sweep_gain_set(4);
 }
 
+/*
+ * The legal extremes (issue 18). With gains at their limit and the airspeed
+ * scale v_ref / S large, the demand of almost every random step is far beyond
+ * the [-1, 1] clamp, where both laws give the same +/-1 and an error cannot
+ * show. The balanced inputs below therefore solve each axis' gyro (a free
+ * input the rate damping weights by kd * s_p) so that the reference demand
+ * lands at a random point of [-1.2, 1.2]: the fraction of unsaturated
+ * surfaces is then large (asserted), and the error there is the core's
+ * error at the full amplification of its gains.
+ */
+#define EXTREME_STEPS 100000L
+#define RANDOM_SETS   400
+#define RANDOM_STEPS  2500L
+
+/* The airspeed S of the spec (step 1) and s_p (step 9), from the reference's
+ * own inputs. */
+static double ref_s_p(const ht_ref_params_t *rp, const ht_ref_input_t *ri)
+{
+    const double s = (ri->airspeed > rp->v_min) ? ri->airspeed : rp->v_min;
+    return rp->schedule ? rp->v_ref / s : 1.0;
+}
+
+static void balance_gyros(uint64_t *rng, const ht_ref_params_t *rp, ht_input_t *in)
+{
+    ht_ref_input_t ri;
+    ht_ref_output_t ro;
+    ht_ref_input_from_fixed(in, &ri);
+    ht_ref_step(rp, &ri, &ro);
+    const double s_p = ref_s_p(rp, &ri);
+    for (int i = 0; i < 3; i++) {
+        const double k = rp->kd[i] * s_p; /* d(demand) / d(gyro) = -k */
+        const double u = ts_uniform(rng, -1.2, 1.2);
+        if (k > 0.0) {
+            in->gyro_rad_s[i] = ts_fix16(ri.gyro[i] + (ro.demand[i] - u) / k, 11);
+        }
+    }
+}
+
+typedef struct {
+    ts_err_t errs[TS_N_OUTPUTS];
+    long steps, skipped, unsaturated[3];
+} extreme_stats_t;
+
+static void extreme_stats_init(extreme_stats_t *st)
+{
+    ts_errs_init(st->errs);
+    st->steps = st->skipped = 0;
+    st->unsaturated[0] = st->unsaturated[1] = st->unsaturated[2] = 0;
+}
+
+/* Accumulate the worst errors of `steps` balanced steps of one parameter set. */
+static void sweep_extreme(const ht_params_t *params, uint64_t seed, long steps, extreme_stats_t *st)
+{
+    ht_controller_t ctl;
+    ht_param_id_t bad;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, params, &bad));
+    ht_ref_params_t rp;
+    ht_ref_params_from_controller(&ctl, &rp);
+    uint64_t rng = seed;
+    for (long k = 0; k < steps; k++) {
+        ht_input_t in;
+        random_input(&rng, &in, (k & 1) ? REGIME_WIDE : REGIME_CRUISE);
+        balance_gyros(&rng, &rp, &in);
+        ht_output_t out;
+        ht_step(&ctl, &in, &out);
+        ht_ref_input_t ri;
+        ht_ref_output_t ro;
+        ht_ref_input_from_fixed(&in, &ri);
+        ht_ref_step(&rp, &ri, &ro);
+        st->steps++;
+        if (ts_on_branch_boundary(&ro, &rp)) {
+            st->skipped++;
+            continue;
+        }
+        for (int i = 0; i < 3; i++) {
+            st->unsaturated[i] += fabs(ro.demand[i]) < 1.0;
+        }
+        ts_errs_add_step(st->errs, &out, &ro);
+    }
+}
+
+/* Print the worst errors; 0 when one is beyond its limit. */
+static int report_extreme(const char *title, const extreme_stats_t *st)
+{
+    int ok = 1;
+    ts_errs_print(title, st->errs);
+    printf("  unsaturated demands X/Y/Z: %ld / %ld / %ld of %ld; skipped on a branch "
+           "boundary: %ld\n",
+           st->unsaturated[0], st->unsaturated[1], st->unsaturated[2], st->steps, st->skipped);
+    ok &= st->skipped <= st->steps / 100;
+    for (int i = 0; i < TS_N_OUTPUTS; i++) {
+        int is_rate = (i == 0 || (i >= 4 && i <= 6));
+        int is_surface = (i >= 13);
+        double limit =
+            is_rate ? LIMIT_RATES_LSB : (is_surface ? LIMIT_SURFACES_LSB : LIMIT_ANGLES_LSB);
+        if (st->errs[i].worst > limit) {
+            printf("  FAIL %s: %.2f LSB > %.1f\n", st->errs[i].name, st->errs[i].worst, limit);
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+/* The smallest legal v_min for a v_ref of v_ref_cm_s, and the largest v_ref
+ * for a v_min (the ends of the scale v_ref / v_min). */
+static int32_t ht_v_min_for_scale(int32_t v_ref_cm_s)
+{
+    return (v_ref_cm_s + HT_SCALE_MAX - 1) / HT_SCALE_MAX;
+}
+
+static int32_t ht_v_ref_max_for(int32_t v_min_cm_s)
+{
+    return v_min_cm_s * HT_SCALE_MAX;
+}
+
+/* A parameter set with the same kp, kff and kd (Q16) on every axis. */
+static ht_params_t gains3(q16_t kp, q16_t kff, q16_t kd, int32_t v_ref, int32_t v_min,
+                          uint8_t schedule, q16_t max_tilt, uint8_t pitch_mode)
+{
+    ht_params_t p = HT_PARAMS_DEFAULT;
+    p.kp_aileron = p.kp_elevator = p.kp_rudder = kp;
+    p.kff_aileron = p.kff_elevator = p.kff_rudder = kff;
+    p.kd_aileron = p.kd_elevator = p.kd_rudder = kd;
+    p.v_ref_cm_s = v_ref;
+    p.v_min_cm_s = v_min;
+    p.schedule = schedule;
+    p.max_tilt = max_tilt;
+    p.pitch_mode = pitch_mode;
+    return p;
+}
+
+/* The corners of the legal space: kp at its limit everywhere, the rate gain
+ * kff * v_ref / v_min + kd * s_p,max at its limit (512) split every way at
+ * the largest scale v_ref / v_min (32), schedule on and off, both pitch
+ * modes; every gain at 64 where the scale allows it (<= 4 scheduled);
+ * v_ref = v_min at either end of the airspeed range (s_ff down to
+ * 1 m/s / 327 m/s); the tilt limit at its smallest. */
+static void test_sweep_legal_corners(void)
+{
+    const q16_t g = HT_GAIN_MAX_Q16;
+    const q16_t t = HT_MAX_TILT_LIMIT_Q16;
+    const int32_t v_hi = HT_V_REF_MAX_CM_S, v_lo = HT_V_MIN_LOWEST_CM_S;
+    const int32_t v_min_32 = ht_v_min_for_scale(v_hi);
+    const struct {
+        const char *name;
+        ht_params_t p;
+    } corners[] = {
+        {"kp 64, kff 8, kd 8, schedule, scale 32",
+         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"kp 64, kff 1, kd 15, schedule, scale 32",
+         gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"kp 64, kff 15, kd 1, schedule, scale 32, tilt cross",
+         gains3(g, 15 * Q16_ONE, Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
+        {"kp 64, kff 14, kd 64, no schedule, scale 32",
+         gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
+        {"kp 64, kff 8, kd 8, schedule, scale 32, smallest v_min",
+         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
+                HT_PITCH_EARTH_FRAME)},
+        {"all gains 64, schedule, scale 4",
+         gains3(g, g, g, v_hi, (v_hi + 3) / 4, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"all gains 64, schedule, v_ref = v_min = 1 m/s",
+         gains3(g, g, g, v_lo, v_lo, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"all gains 64, schedule, v_ref = v_min = 327.67 m/s",
+         gains3(g, g, g, v_hi, v_hi, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"kp 64, kff 8, kd 8, schedule, scale 32, max_tilt 1 LSB",
+         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, 1, HT_PITCH_EARTH_FRAME)},
+    };
+    const int n = (int)(sizeof corners / sizeof corners[0]);
+    int failed = 0;
+    for (int c = 0; c < n; c++) {
+        extreme_stats_t st;
+        extreme_stats_init(&st);
+        sweep_extreme(&corners[c].p, 0xC0C0E000u + (uint64_t)c, EXTREME_STEPS, &st);
+        failed |= !report_extreme(corners[c].name, &st);
+        /* the balance must put a good share of the surfaces inside [-1, 1] */
+        for (int i = 0; i < 3; i++) {
+            TEST_ASSERT_GREATER_THAN(EXTREME_STEPS / 20, st.unsaturated[i]);
+        }
+    }
+    TEST_ASSERT_FALSE(failed);
+}
+
+/* A uniformly random value of [lo, hi], hitting each end 1 time in 8. */
+static int32_t draw_i32(uint64_t *rng, int32_t lo, int32_t hi)
+{
+    const uint64_t r = ts_rng_next(rng);
+    if ((r & 7u) == 0u) {
+        return ((r >> 3) & 1u) ? hi : lo;
+    }
+    return lo + (int32_t)((r >> 8) % (uint64_t)((int64_t)hi - lo + 1));
+}
+
+/* A random parameter set drawn over the whole legal space: each gain in
+ * [0, 64] (its ends 1 time in 8), v_min and v_ref log-uniform over their
+ * ranges, schedule, max_tilt and pitch mode at random. Draws that ht_init
+ * refuses (v_ref beyond the scale limit) are drawn again. */
+static ht_params_t random_legal_params(uint64_t *rng)
+{
+    for (;;) {
+        ht_params_t p;
+        q16_t *gains[9] = {&p.kp_aileron,  &p.kp_elevator,  &p.kp_rudder,
+                           &p.kff_aileron, &p.kff_elevator, &p.kff_rudder,
+                           &p.kd_aileron,  &p.kd_elevator,  &p.kd_rudder};
+        for (int i = 0; i < 9; i++) {
+            *gains[i] = draw_i32(rng, 0, HT_GAIN_MAX_Q16);
+        }
+        const double lv_min = ts_uniform(rng, log(HT_V_MIN_LOWEST_CM_S), log(32767.0));
+        p.v_min_cm_s = (int32_t)lround(exp(lv_min));
+        const double lv_ref = ts_uniform(rng, log((double)p.v_min_cm_s), log(32767.0));
+        p.v_ref_cm_s = (ts_rng_next(rng) & 7u) ? (int32_t)lround(exp(lv_ref)) : p.v_min_cm_s;
+        p.schedule = (uint8_t)(ts_rng_next(rng) & 1u);
+        p.max_tilt = draw_i32(rng, 1, HT_MAX_TILT_LIMIT_Q16);
+        p.pitch_mode = (uint8_t)(ts_rng_next(rng) & 1u);
+        ht_controller_t c;
+        if (ht_init(&c, &p, NULL) == HT_OK) {
+            return p;
+        }
+    }
+}
+
+static void test_sweep_random_legal_parameters(void)
+{
+    uint64_t rng = 0x1E6A15E7u;
+    extreme_stats_t st;
+    extreme_stats_init(&st);
+    for (int set = 0; set < RANDOM_SETS; set++) {
+        const ht_params_t p = random_legal_params(&rng);
+        sweep_extreme(&p, 0x5E7000u + (uint64_t)set, RANDOM_STEPS, &st);
+    }
+    TEST_ASSERT_TRUE(
+        report_extreme("random legal parameter sets (400 x 2500 balanced steps)", &st));
+    for (int i = 0; i < 3; i++) {
+        TEST_ASSERT_GREATER_THAN(st.steps / 10, st.unsaturated[i]);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -166,5 +383,7 @@ int main(void)
     RUN_TEST(test_sweep_t37);
     RUN_TEST(test_sweep_scheduled);
     RUN_TEST(test_sweep_tilt_cross);
+    RUN_TEST(test_sweep_legal_corners);
+    RUN_TEST(test_sweep_random_legal_parameters);
     return UNITY_END();
 }
