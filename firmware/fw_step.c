@@ -152,11 +152,11 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
         fw->imu_age = 0u;
         if (fw->aligned == 0u) {
             const int32_t min_v = cfg->dcm.gps_min_speed_cm_s / 16;
-            const uint8_t course_ok =
-                (fix3 != 0u && ground_speed2(g) > min_v * min_v) ? 1u : 0u;
+            const uint8_t course_ok = (fix3 != 0u && ground_speed2(g) > min_v * min_v) ? 1u : 0u;
             const uint16_t course =
                 (course_ok != 0u) ? course_cdeg(g->vel_ned_cm_s[0], g->vel_ned_cm_s[1]) : 0u;
-            if (ht_dcm_align(&fw->dcm, &fw->dcm_state, in->sensors.imu.accel_g, course_ok, course) == 0) {
+            if (ht_dcm_align(&fw->dcm, &fw->dcm_state, in->sensors.imu.accel_g, course_ok,
+                             course) == 0) {
                 fw->aligned = 1u;
             }
         }

@@ -83,9 +83,9 @@ void fw_config_default(fw_config_t *cfg);
 typedef enum {
     FW_BAD_NONE = 0,
     FW_BAD_NULL,
-    FW_BAD_DCM,     /* sub = ht_dcm_param_id_t */
-    FW_BAD_LAW,     /* sub = ht_param_id_t */
-    FW_BAD_MODES,   /* sub = ht_modes_param_id_t (modes_bad has the detail) */
+    FW_BAD_DCM,   /* sub = ht_dcm_param_id_t */
+    FW_BAD_LAW,   /* sub = ht_param_id_t */
+    FW_BAD_MODES, /* sub = ht_modes_param_id_t (modes_bad has the detail) */
     FW_BAD_GUARD,
     FW_BAD_OUTPUT,  /* sub = the first bad channel */
     FW_BAD_DIVIDER, /* control_divider or the rates do not agree */
@@ -97,8 +97,8 @@ typedef struct {
     q14_t down_q14[3];       /* DCM bottom row: the law's tilt input */
     q11_t gyro_q11_rad_s[3]; /* body rates, bias removed */
     int16_t airspeed_cm_s;
-    int32_t altitude_cm; /* same datum as the waypoints (mean sea level) */
-    int32_t climb_cm_s;  /* + = up */
+    int32_t altitude_cm;                   /* same datum as the waypoints (mean sea level) */
+    int32_t climb_cm_s;                    /* + = up */
     int32_t north_cm, east_cm;             /* from home (the first 3-D fix) */
     int32_t vel_north_cm_s, vel_east_cm_s; /* ground velocity */
     q14_t heading_north, heading_east;     /* the nose's horizontal direction */

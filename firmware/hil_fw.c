@@ -200,7 +200,7 @@ static void refused(hil_fw_t *h)
         break;
     case FW_BAD_MODES:
         block = (fw->modes_bad.field == HT_MODES_P_SPEED_HOLD) ? (uint8_t)HIL_ID_CFG_SPD
-                                                                 : (uint8_t)HIL_ID_CFG_ALT;
+                                                               : (uint8_t)HIL_ID_CFG_ALT;
         break;
     case FW_BAD_OUTPUT:
         block = (uint8_t)HIL_ID_CFG_OUT;

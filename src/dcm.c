@@ -143,7 +143,7 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     if (d == NULL || s == NULL || accel_g == NULL || d->ready == 0u) {
         return 2;
     }
-    int32_t cd = (heading_valid != 0u) ? (int32_t)(heading_cdeg % 36000u) : 0;
+    int32_t cd = (heading_valid != 0u) ? ((int32_t)heading_cdeg % 36000) : 0;
     if (cd > 18000) {
         cd -= 36000;
     }
@@ -155,7 +155,8 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     }
     zero3(s->bias);
     zero3(s->omega_corr);
-    s->flags = (uint16_t)((s->flags & HT_DCM_F_RENORM_FAILED) | HT_DCM_F_ALIGNED);
+    s->flags =
+        (uint16_t)((s->flags & (uint16_t)HT_DCM_F_RENORM_FAILED) | (uint16_t)HT_DCM_F_ALIGNED);
     return 0;
 }
 
@@ -255,7 +256,7 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
         wt = accel_weight_q16(d, dot_sat(g, u, 28u));
     }
     if (wt == 0) {
-        return (uint16_t)(f | HT_DCM_F_ACCEL_IGNORED);
+        return (uint16_t)(f | (uint16_t)HT_DCM_F_ACCEL_IGNORED);
     }
     int32_t dm[3];
     for (unsigned i = 0u; i < 3u; i++) {
@@ -456,7 +457,9 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     const ht_dcm_aiding_t *a = (aid != NULL) ? aid : &no_aiding;
     q16_t gyro[3];
     q16_t acc[3];
-    uint16_t flags = (uint16_t)((s->flags & FLAGS_KEPT) | clamp_sample(d, imu, gyro, acc));
+    const uint16_t kept = (uint16_t)(s->flags & FLAGS_KEPT);
+    const uint16_t sample_flags = clamp_sample(d, imu, gyro, acc);
+    uint16_t flags = (uint16_t)(kept | sample_flags);
     if ((flags & (uint16_t)HT_DCM_F_ALIGNED) == 0u) {
         /* the first usable sample aligns roll and pitch (heading north) */
         if (align_rows(s->r, acc, Q30_ONE, 0) == 0) {

@@ -4,6 +4,7 @@
 #include "sil_board.h"
 
 #include <math.h>
+#include <stdbool.h>
 // cppcheck-suppress misra-c2012-21.6 ; D-SIL-HOST: host-only SIL board, snprintf names a refused
 // field for the Python caller
 #include <stdio.h>
@@ -121,8 +122,8 @@ size_t sil_actuators_size(void)
 /* The flight modes' parameters (physical units -> modes.h) and the
  * waypoints; every value is range-checked by ht_modes_init after
  * conversion, so only what would not convert into its field is refused here. */
-static int modes_params(sil_board_t *b, const sil_config_t *cfg, ht_modes_params_t *p,
-                        char *err, size_t err_len)
+static int modes_params(sil_board_t *b, const sil_config_t *cfg, ht_modes_params_t *p, char *err,
+                        size_t err_len)
 {
     if (cfg->waypoint_count < 0 || cfg->waypoint_count > SIL_MAX_WAYPOINTS) {
         return fail(err, err_len, "waypoint_count");
@@ -284,17 +285,14 @@ static int hold_params(const sil_config_t *cfg, fw_config_t *fc, char *err, size
 /* The estimator (dcm.h), from degrees and metres. */
 static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, size_t err_len)
 {
-    const double vals[] = {cfg->dcm_kp_rollpitch,        cfg->dcm_ki_rollpitch,
-                           cfg->dcm_kp_yaw,              cfg->dcm_ki_yaw,
-                           cfg->dcm_gyro_bias_max_deg_s, cfg->dcm_gyro_limit_deg_s,
-                           cfg->dcm_accel_limit_g,       cfg->dcm_accel_band_g,
-                           cfg->dcm_gps_min_speed_m_s};
-    static const char *const names[] = {"estimator.kp_rollpitch",    "estimator.ki_rollpitch",
-                                        "estimator.kp_yaw",          "estimator.ki_yaw",
-                                        "estimator.gyro_bias_max_deg_s",
-                                        "estimator.gyro_limit_deg_s", "estimator.accel_limit_g",
-                                        "estimator.accel_band_g",
-                                        "estimator.gps_min_speed_m_s"};
+    const double vals[] = {
+        cfg->dcm_kp_rollpitch,  cfg->dcm_ki_rollpitch,        cfg->dcm_kp_yaw,
+        cfg->dcm_ki_yaw,        cfg->dcm_gyro_bias_max_deg_s, cfg->dcm_gyro_limit_deg_s,
+        cfg->dcm_accel_limit_g, cfg->dcm_accel_band_g,        cfg->dcm_gps_min_speed_m_s};
+    static const char *const names[] = {
+        "estimator.kp_rollpitch",  "estimator.ki_rollpitch",        "estimator.kp_yaw",
+        "estimator.ki_yaw",        "estimator.gyro_bias_max_deg_s", "estimator.gyro_limit_deg_s",
+        "estimator.accel_limit_g", "estimator.accel_band_g",        "estimator.gps_min_speed_m_s"};
     for (size_t i = 0; i < sizeof vals / sizeof vals[0]; ++i) {
         if (!in_range(vals[i], 0.0, 10000.0)) {
             return fail(err, err_len, names[i]);
@@ -379,8 +377,10 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
         return rc;
     }
     fc->modes_pitch_mode = (cfg->modes_pitch_mode != 0) ? 1u : 0u;
-    fc->control_divider = (uint16_t)(cfg->imu_rate_hz / cfg->control_rate_hz);
-    fc->imu_timeout_samples = (uint16_t)(cfg->imu_rate_hz / 5); /* 0.2 s */
+    const int32_t divider = cfg->imu_rate_hz / cfg->control_rate_hz;
+    fc->control_divider = (uint16_t)divider;
+    const int32_t timeout = cfg->imu_rate_hz / 5; /* 0.2 s */
+    fc->imu_timeout_samples = (uint16_t)timeout;
 
     const double trims[3] = {cfg->trim_aileron, cfg->trim_elevator, cfg->trim_rudder};
     static const char *const trim_names[3] = {"trim_aileron", "trim_elevator", "trim_rudder"};
@@ -510,8 +510,8 @@ static void actuators(const sil_board_t *b, sil_actuators_t *a)
         a->nav_index = m->nav.index;
         a->nav_arrived = m->nav.arrived;
         a->nav_flags = m->nav.flags;
-        a->nav_reached =
-            (int32_t)(st->nav.reached > (uint32_t)INT32_MAX ? (uint32_t)INT32_MAX : st->nav.reached);
+        a->nav_reached = (int32_t)(st->nav.reached > (uint32_t)INT32_MAX ? (uint32_t)INT32_MAX
+                                                                         : st->nav.reached);
         a->turn_target_rad_s = from_q16(m->turn_target_rad_s);
         a->turn_cmd_rad_s = from_q11(m->law_in.turn_rate_rad_s);
         a->nav_turn_rate_rad_s = from_q16(m->nav.turn_rate_rad_s);
@@ -550,7 +550,8 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
         in.rc_us[i] = (uint16_t)to_fixed(c->rc_us[i], 1.0, 0, UINT16_MAX);
     }
     in.rc_fresh = (c->rc_fresh != 0) ? 1u : 0u;
-    const int n = (s->imu_count < 0) ? 0 : (s->imu_count > SIL_IMU_MAX ? SIL_IMU_MAX : s->imu_count);
+    const int n =
+        (s->imu_count < 0) ? 0 : (s->imu_count > SIL_IMU_MAX ? SIL_IMU_MAX : s->imu_count);
     /* no sample: one call without one (the firmware counts the gap) */
     const int calls = (n == 0) ? 1 : n;
     /* the slower sensors' values hold for the whole batch; their "fresh"
@@ -558,19 +559,21 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     slow_sensors(s, &in);
     const uint8_t gps_fresh = in.sensors.gps.fresh, airspeed_fresh = in.sensors.airspeed_fresh;
     const uint8_t baro_fresh = in.sensors.baro_fresh;
-    int ran = 0;
+    bool ran = false;
     for (int i = 0; i < calls; ++i) {
         in.sensors.imu_fresh = (n > 0) ? 1u : 0u;
         for (int k = 0; k < 3 && n > 0; ++k) {
             in.sensors.imu.gyro_rad_s[k] = to_q16(s->gyro_rad_s[i][k]);
             in.sensors.imu.accel_g[k] = to_q16(s->accel_g[i][k]);
         }
-        const int last = (i == calls - 1);
+        const bool last = (i == (calls - 1));
         in.sensors.gps.fresh = last ? gps_fresh : 0u;
         in.sensors.airspeed_fresh = last ? airspeed_fresh : 0u;
         in.sensors.baro_fresh = last ? baro_fresh : 0u;
         in.external = (last && s->use_truth != 0) ? &truth : NULL;
-        ran |= fw_step(&b->fw, &in, &b->out);
+        if (fw_step(&b->fw, &in, &b->out) != 0) {
+            ran = true;
+        }
     }
     if (ran) {
         actuators(b, a);

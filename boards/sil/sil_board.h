@@ -97,10 +97,10 @@ typedef struct {
  * The truth part is JSBSim's own state: the control flies on it when
  * use_truth != 0 (the estimator still runs on the raw part). */
 typedef struct {
-    int32_t imu_count;                   /* [0, SIL_IMU_MAX] */
-    double gyro_rad_s[SIL_IMU_MAX][3];   /* body rates */
-    double accel_g[SIL_IMU_MAX][3];      /* specific force, g (level flight: 0, 0, -1) */
-    int32_t gps_fresh, gps_fix;          /* a new solution; 3 = 3-D fix */
+    int32_t imu_count;                 /* [0, SIL_IMU_MAX] */
+    double gyro_rad_s[SIL_IMU_MAX][3]; /* body rates */
+    double accel_g[SIL_IMU_MAX][3];    /* specific force, g (level flight: 0, 0, -1) */
+    int32_t gps_fresh, gps_fix;        /* a new solution; 3 = 3-D fix */
     double gps_lat_deg, gps_lon_deg, gps_alt_m;
     double gps_vel_ned_m_s[3];
     int32_t airspeed_fresh;
@@ -160,11 +160,11 @@ typedef struct {
     int32_t aoa_active;
     /* ABI 8: the estimator and the solution the control flew on */
     int32_t control_ran;
-    double est_x, est_y, est_z;                   /* the estimate's bottom row */
+    double est_x, est_y, est_z; /* the estimate's bottom row */
     double est_roll_deg, est_pitch_deg, est_yaw_deg;
     double est_bias_rad_s[3];
-    int32_t est_flags;                            /* HT_DCM_F_* */
-    double nav_x, nav_y, nav_z;                   /* the bottom row the law was given */
+    int32_t est_flags;          /* HT_DCM_F_* */
+    double nav_x, nav_y, nav_z; /* the bottom row the law was given */
     double nav_airspeed_m_s, nav_altitude_m, nav_climb_m_s, nav_north_m, nav_east_m;
     int32_t guard_engaged;
 } sil_actuators_t;

@@ -417,7 +417,8 @@ static void test_same_step_as_the_sil_board(void)
     TEST_ASSERT_EQUAL_INT32(sa->integral_q20[0], fa->integral_q20[0]);
     TEST_ASSERT_EQUAL_INT32(sa->integral_q20[1], fa->integral_q20[1]);
     TEST_ASSERT_EQUAL_UINT8(sil.cfg.out.count, fw.cfg.out.count); /* the channels in use */
-    TEST_ASSERT_EQUAL_MEMORY(sil.cfg.out.ch, fw.cfg.out.ch, sil.cfg.out.count * sizeof(os_channel_t));
+    TEST_ASSERT_EQUAL_MEMORY(sil.cfg.out.ch, fw.cfg.out.ch,
+                             sil.cfg.out.count * sizeof(os_channel_t));
     TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[0], &fw.fw.law[0], sizeof sil.fw.law[0]);
     TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[1], &fw.fw.law[1], sizeof sil.fw.law[1]);
     uint64_t rng = 2024;
@@ -465,8 +466,7 @@ static void test_bad_frames_are_never_acted_on(void)
     TEST_ASSERT_EQUAL_UINT16(1u, fw.rx.stats.bad_crc);
     TEST_ASSERT_EQUAL_UINT16(3u, fw.rx.stats.unknown_id); /* wrong length counts here */
     TEST_ASSERT_EQUAL_UINT32(before.steps, fw.steps);
-    TEST_ASSERT_EQUAL_MEMORY(&before.fw.modes_state, &fw.fw.modes_state,
-                             sizeof fw.fw.modes_state);
+    TEST_ASSERT_EQUAL_MEMORY(&before.fw.modes_state, &fw.fw.modes_state, sizeof fw.fw.modes_state);
     TEST_ASSERT_EQUAL_UINT32(1u, fake_board.commits);
 
     /* reserved flag bits: refused with a NAK, not stepped */
