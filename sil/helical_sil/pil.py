@@ -2,7 +2,7 @@
 
 `run ... --target pil` flies a scenario exactly as the SIL does (the same
 lockstep loop of sim.py), except that each control step is computed by the
-HIL firmware image (`ht_stm32f4_hil.elf`, boards/common/hil_main.c) running
+HIL firmware image (`ht_stm32f4_hil.elf`, firmware/hil_main.c) running
 in `qemu-system-arm -M netduinoplus2`: the host converts the sensors and the
 command into the firmware's fixed-point formats (the conversions of
 boards/sil/sil_board.c, rounding to nearest with ties away from zero), sends
