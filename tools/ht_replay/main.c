@@ -133,10 +133,12 @@ static int run(const ht_controller_t *ctl)
             break;
         }
         double values[HT_COL_COUNT];
+        ht_csv_field_t fields[HT_COL_COUNT];
         ht_input_t in;
         if (s == HT_CSV_LINE_ERR ||
-            ht_csv_parse_row(&header, line.text, line.len, line.number, values, &err) != 0 ||
-            ht_replay_to_input(values, line.number, &in, &err) != 0) {
+            ht_csv_parse_row_fields(&header, line.text, line.len, line.number, values, fields,
+                                    &err) != 0 ||
+            ht_replay_to_input(fields, line.number, &in, &err) != 0) {
             status = fail_csv(&err);
             break;
         }
