@@ -106,6 +106,11 @@ static void show(const char *s, char *buf, size_t size)
     show_n(s, strlen(s), buf, size);
 }
 
+void ht_param_show_text(const char *text, char *buf, size_t size)
+{
+    show(text, buf, size);
+}
+
 int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg, size_t size)
 {
     char shown[44];
