@@ -50,86 +50,127 @@ void hil_decoder_init(hil_decoder_t *d, hil_msg_table_t table)
     hil_decoder_t zero = {0};
     *d = zero;
     d->table = table;
-    d->state = (uint8_t)HIL_WAIT_SYNC1;
 }
 
 /* A frame of this id and length is one the caller expects. */
-static int known(const hil_decoder_t *d)
+static int known(const hil_msg_table_t *t, uint8_t id, uint8_t len)
 {
-    if (d->table.expected_len == NULL || d->id >= d->table.id_count) {
+    if (t->expected_len == NULL || id >= t->id_count) {
         return 0;
     }
-    uint8_t want = d->table.expected_len[d->id];
-    return want == 0xFFu || want == d->len;
+    uint8_t want = t->expected_len[id];
+    return want == 0xFFu || want == len;
 }
 
-/* After a frame has failed, look for a new start: a 0xA5 here may itself be
- * the first sync byte. */
-static void resync(hil_decoder_t *d, uint8_t byte)
+/*
+ * The held bytes are w[0..n). A candidate frame starts at every i with
+ * w[i] == SYNC1 and, as far as the bytes go, w[i + 1] == SYNC2 and a length
+ * byte w[i + 2] <= HIL_PAYLOAD_MAX. It ends at i + len + HIL_OVERHEAD; before
+ * that it is open.
+ */
+typedef enum { CAND_NONE, CAND_BAD_LENGTH, CAND_OPEN, CAND_ENDED } cand_t;
+
+static cand_t candidate(const uint8_t *w, unsigned n, unsigned i)
 {
-    d->state = (uint8_t)((byte == HIL_SYNC1) ? HIL_WAIT_SYNC2 : HIL_WAIT_SYNC1);
+    if (w[i] != HIL_SYNC1 || (i + 1u < n && w[i + 1u] != HIL_SYNC2)) {
+        return CAND_NONE;
+    }
+    if (i + 2u >= n) {
+        return CAND_OPEN;
+    }
+    if (w[i + 2u] > HIL_PAYLOAD_MAX) {
+        return CAND_BAD_LENGTH;
+    }
+    return (n - i < (unsigned)w[i + 2u] + HIL_OVERHEAD) ? CAND_OPEN : CAND_ENDED;
+}
+
+/* The candidate at i ends exactly at n with a good CRC. */
+static int good_frame_ends_here(const uint8_t *w, unsigned n, unsigned i)
+{
+    if (candidate(w, n, i) != CAND_ENDED || n - i != (unsigned)w[i + 2u] + HIL_OVERHEAD) {
+        return 0;
+    }
+    uint16_t crc = hil_crc16(0xFFFFu, &w[i + 2u], n - i - 4u);
+    return crc == (uint16_t)(w[n - 2u] | ((uint16_t)w[n - 1u] << 8));
+}
+
+/* Account for w[0..end), bytes that precede a well-formed frame: the sync
+ * byte of each dropped candidate in its counter, the rest skipped. A
+ * candidate still open here is cut short by the frame and counts as a bad
+ * CRC (it cannot be both intact and overlap an intact frame). */
+static void drop_before(hil_decoder_t *d, unsigned end)
+{
+    for (unsigned i = 0; i < end; i++) {
+        cand_t c = candidate(d->window, d->held, i);
+        count(c == CAND_NONE         ? &d->stats.skipped_bytes
+              : c == CAND_BAD_LENGTH ? &d->stats.bad_length
+                                     : &d->stats.bad_crc);
+    }
+}
+
+/* While the oldest candidate (at 0) has failed, count it and move the held
+ * bytes down to the next possible frame start, so that every byte after a
+ * failed sync byte is searched again. Iterative: each pass drops >= 1 byte. */
+static void drop_failed(hil_decoder_t *d)
+{
+    while (d->held > 0u) {
+        cand_t c = candidate(d->window, d->held, 0u);
+        if (c == CAND_OPEN) {
+            return;
+        }
+        /* A candidate that has ended without being taken had a bad CRC: one
+         * with a good CRC is taken at its last byte, in hil_decoder_push. */
+        count(c == CAND_NONE         ? &d->stats.skipped_bytes
+              : c == CAND_BAD_LENGTH ? &d->stats.bad_length
+                                     : &d->stats.bad_crc);
+        unsigned next = 1u;
+        while (next < d->held && d->window[next] != HIL_SYNC1) {
+            count(&d->stats.skipped_bytes);
+            next++;
+        }
+        unsigned keep = d->held - next;
+        for (unsigned k = 0; k < keep; k++) {
+            d->window[k] = d->window[next + k];
+        }
+        d->held = (uint8_t)keep;
+    }
 }
 
 int hil_decoder_push(hil_decoder_t *d, uint8_t byte)
 {
-    switch ((hil_rx_state_t)d->state) {
-    case HIL_WAIT_SYNC1:
-        if (byte == HIL_SYNC1) {
-            d->state = (uint8_t)HIL_WAIT_SYNC2;
-        } else {
-            count(&d->stats.skipped_bytes);
+    if (d->held == 0u && byte != HIL_SYNC1) {
+        count(&d->stats.skipped_bytes);
+        return 0;
+    }
+    /* Room: the oldest candidate is open, so held < its length <= FRAME_MAX. */
+    d->window[d->held] = byte;
+    d->held++;
+    const unsigned n = d->held;
+
+    /* The earliest candidate that this byte completes with a good CRC is a
+     * frame; later ones lie inside it and are not frames. */
+    for (unsigned i = 0; i + HIL_OVERHEAD <= n; i++) {
+        if (!good_frame_ends_here(d->window, n, i)) {
+            continue;
         }
-        return 0;
-    case HIL_WAIT_SYNC2:
-        if (byte == HIL_SYNC2) {
-            d->state = (uint8_t)HIL_WAIT_LEN;
-        } else {
-            count(&d->stats.skipped_bytes);
-            resync(d, byte);
-        }
-        return 0;
-    case HIL_WAIT_LEN:
-        if (byte > HIL_PAYLOAD_MAX) {
-            count(&d->stats.bad_length);
-            resync(d, byte);
-            return 0;
-        }
-        d->len = byte;
-        d->crc = hil_crc16(0xFFFFu, &byte, 1u);
-        d->state = (uint8_t)HIL_WAIT_ID;
-        return 0;
-    case HIL_WAIT_ID:
-        d->id = byte;
-        d->crc = hil_crc16(d->crc, &byte, 1u);
-        d->count = 0u;
-        d->state = (uint8_t)((d->len == 0u) ? HIL_WAIT_CRC_LO : HIL_IN_PAYLOAD);
-        return 0;
-    case HIL_IN_PAYLOAD:
-        d->payload[d->count] = byte;
-        d->count++;
-        d->crc = hil_crc16(d->crc, &byte, 1u);
-        if (d->count == d->len) {
-            d->state = (uint8_t)HIL_WAIT_CRC_LO;
-        }
-        return 0;
-    case HIL_WAIT_CRC_LO:
-        d->crc_lo = byte;
-        d->state = (uint8_t)HIL_WAIT_CRC_HI;
-        return 0;
-    case HIL_WAIT_CRC_HI:
-    default:
-        d->state = (uint8_t)HIL_WAIT_SYNC1;
-        if ((uint16_t)(d->crc_lo | ((uint16_t)byte << 8)) != d->crc) {
-            count(&d->stats.bad_crc);
-            return 0;
-        }
-        if (!known(d)) {
+        drop_before(d, i);
+        uint8_t len = d->window[i + 2u];
+        uint8_t id = d->window[i + 3u];
+        d->held = 0u;
+        if (!known(&d->table, id, len)) {
             count(&d->stats.unknown_id);
             return 0;
+        }
+        d->id = id;
+        d->len = len;
+        for (unsigned k = 0; k < len; k++) {
+            d->payload[k] = d->window[i + 4u + k];
         }
         count(&d->stats.frames_ok);
         return 1;
     }
+    drop_failed(d);
+    return 0;
 }
 
 void hil_put_u16(uint8_t *p, uint16_t v)

@@ -229,7 +229,8 @@ elseif(MODE STREQUAL "help")
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "--help exit ${rc}:\n${err}")
   endif()
-  foreach(needle "usage: ht_replay" "not a clamp" "line N, column NAME" "Exit status"
+  foreach(needle "usage: ht_replay" "not a clamp" "halves away from zero" "400 characters"
+      "line N, column NAME" "Exit status"
       kp_aileron kp_elevator kp_rudder kff_aileron kff_elevator kff_rudder kd_aileron
       kd_elevator kd_rudder v_ref v_min schedule max_tilt pitch_mode gyro_z inverted)
     string(FIND "${out}" "${needle}" at)

@@ -18,24 +18,30 @@ void setUp(void)
 
 void tearDown(void) {}
 
-/* A typical row: values[] indexed by ht_csv_col_t. */
-static void typical(double v[HT_COL_COUNT])
+static void set(ht_csv_field_t v[HT_COL_COUNT], ht_csv_col_t c, const char *text)
 {
-    v[HT_COL_X] = 0.1;
-    v[HT_COL_Y] = -0.25;
-    v[HT_COL_Z] = 0.995;
-    v[HT_COL_TURN_RATE] = 0.5;
-    v[HT_COL_PITCH] = 0.2;
-    v[HT_COL_AIRSPEED] = 15.0;
-    v[HT_COL_GYRO_X] = -1.0;
-    v[HT_COL_GYRO_Y] = 0.001;
-    v[HT_COL_GYRO_Z] = 15.9995;
-    v[HT_COL_INVERTED] = 1.0;
+    v[c].text = text;
+    v[c].len = strlen(text);
+}
+
+/* A typical row: the fields' texts indexed by ht_csv_col_t. */
+static void typical(ht_csv_field_t v[HT_COL_COUNT])
+{
+    set(v, HT_COL_X, "0.1");
+    set(v, HT_COL_Y, "-0.25");
+    set(v, HT_COL_Z, "0.995");
+    set(v, HT_COL_TURN_RATE, "0.5");
+    set(v, HT_COL_PITCH, "0.2");
+    set(v, HT_COL_AIRSPEED, "15");
+    set(v, HT_COL_GYRO_X, "-1.0");
+    set(v, HT_COL_GYRO_Y, "0.001");
+    set(v, HT_COL_GYRO_Z, "15.9995");
+    set(v, HT_COL_INVERTED, "1");
 }
 
 static void test_row_to_input_exact_integers(void)
 {
-    double v[HT_COL_COUNT];
+    ht_csv_field_t v[HT_COL_COUNT];
     typical(v);
     ht_input_t in;
     TEST_ASSERT_EQUAL_INT(0, ht_replay_to_input(v, 2, &in, &err));
@@ -51,11 +57,11 @@ static void test_row_to_input_exact_integers(void)
     TEST_ASSERT_EQUAL_UINT8(1, in.inverted);
 }
 
-static void expect_out_of_range(ht_csv_col_t col, double value, const char *what)
+static void expect_out_of_range(ht_csv_col_t col, const char *value, const char *what)
 {
-    double v[HT_COL_COUNT];
+    ht_csv_field_t v[HT_COL_COUNT];
     typical(v);
-    v[col] = value;
+    set(v, col, value);
     ht_input_t in;
     setUp();
     TEST_ASSERT_EQUAL_INT(-1, ht_replay_to_input(v, 9, &in, &err));
@@ -68,29 +74,29 @@ static void expect_out_of_range(ht_csv_col_t col, double value, const char *what
 
 static void test_values_that_do_not_fit_are_errors(void)
 {
-    expect_out_of_range(HT_COL_X, 3.0, "3 does not fit the core's format (Q14");
-    expect_out_of_range(HT_COL_Y, -2.0001, "Q14");
-    expect_out_of_range(HT_COL_Z, 1.99997, "Q14"); /* rounds to 32768 */
-    expect_out_of_range(HT_COL_TURN_RATE, 20.0, "20 does not fit the core's format (Q11");
-    expect_out_of_range(HT_COL_PITCH, 40000.0, "Q16");
-    expect_out_of_range(HT_COL_AIRSPEED, 400.0, "int16 cm/s");
-    expect_out_of_range(HT_COL_AIRSPEED, -327.69, "int16 cm/s");
-    expect_out_of_range(HT_COL_GYRO_X, -16.001, "Q11");
-    expect_out_of_range(HT_COL_GYRO_Y, 1e300, "Q11");
-    expect_out_of_range(HT_COL_GYRO_Z, 16.0, "Q11");
-    expect_out_of_range(HT_COL_INVERTED, 0.5, "0.5 is not 0 or 1");
-    expect_out_of_range(HT_COL_INVERTED, -1.0, "is not 0 or 1");
+    expect_out_of_range(HT_COL_X, "3.0", "3 does not fit the core's format (Q14");
+    expect_out_of_range(HT_COL_Y, "-2.0001", "Q14");
+    expect_out_of_range(HT_COL_Z, "1.99997", "Q14"); /* rounds to 32768 */
+    expect_out_of_range(HT_COL_TURN_RATE, "20.0", "20 does not fit the core's format (Q11");
+    expect_out_of_range(HT_COL_PITCH, "40000.0", "Q16");
+    expect_out_of_range(HT_COL_AIRSPEED, "400.0", "int16 cm/s");
+    expect_out_of_range(HT_COL_AIRSPEED, "-327.69", "int16 cm/s");
+    expect_out_of_range(HT_COL_GYRO_X, "-16.001", "Q11");
+    expect_out_of_range(HT_COL_GYRO_Y, "1e300", "Q11");
+    expect_out_of_range(HT_COL_GYRO_Z, "16.0", "Q11");
+    expect_out_of_range(HT_COL_INVERTED, "0.5", "0.5 is not 0 or 1");
+    expect_out_of_range(HT_COL_INVERTED, "-1.0", "is not 0 or 1");
 }
 
 static void test_edges_that_fit(void)
 {
-    double v[HT_COL_COUNT];
+    ht_csv_field_t v[HT_COL_COUNT];
     typical(v);
-    v[HT_COL_X] = -2.0;
-    v[HT_COL_AIRSPEED] = -327.68; /* a pitot can read below zero; the core floors it */
-    v[HT_COL_TURN_RATE] = -16.0;
-    v[HT_COL_PITCH] = -32768.0;
-    v[HT_COL_INVERTED] = 0.0;
+    set(v, HT_COL_X, "-2.0");
+    set(v, HT_COL_AIRSPEED, "-327.68"); /* a pitot can read below zero; the core floors it */
+    set(v, HT_COL_TURN_RATE, "-16.0");
+    set(v, HT_COL_PITCH, "-32768.0");
+    set(v, HT_COL_INVERTED, "0.0");
     ht_input_t in;
     TEST_ASSERT_EQUAL_INT(0, ht_replay_to_input(v, 2, &in, &err));
     TEST_ASSERT_EQUAL_INT16(-32768, in.x);
@@ -98,6 +104,27 @@ static void test_edges_that_fit(void)
     TEST_ASSERT_EQUAL_INT16(-32768, in.turn_rate_rad_s);
     TEST_ASSERT_EQUAL_INT32(-2147483647L - 1, in.pitch_ratio);
     TEST_ASSERT_EQUAL_UINT8(0, in.inverted);
+}
+
+/* Ties in the decimal text round away from zero, exactly (README): 1.005 m/s
+ * is 100.5 cm/s, not the 100.4999... a double holds. */
+static void test_decimal_ties_round_away_from_zero(void)
+{
+    ht_csv_field_t v[HT_COL_COUNT];
+    typical(v);
+    set(v, HT_COL_AIRSPEED, "1.005");
+    set(v, HT_COL_X, "-0.000030517578125");        /* half a Q14 step */
+    set(v, HT_COL_TURN_RATE, "0.000244140625");    /* half a Q11 step */
+    set(v, HT_COL_PITCH, "1.0000076293945312500"); /* 65536.5 / 65536 */
+    ht_input_t in;
+    TEST_ASSERT_EQUAL_INT(0, ht_replay_to_input(v, 2, &in, &err));
+    TEST_ASSERT_EQUAL_INT16(101, in.airspeed_cm_s);
+    TEST_ASSERT_EQUAL_INT16(-1, in.x);
+    TEST_ASSERT_EQUAL_INT16(1, in.turn_rate_rad_s);
+    TEST_ASSERT_EQUAL_INT32(65537, in.pitch_ratio);
+    set(v, HT_COL_AIRSPEED, "-1.00499999999999999999");
+    TEST_ASSERT_EQUAL_INT(0, ht_replay_to_input(v, 2, &in, &err));
+    TEST_ASSERT_EQUAL_INT16(-100, in.airspeed_cm_s);
 }
 
 static void test_fixed_to_real(void)
@@ -166,6 +193,7 @@ int main(void)
     RUN_TEST(test_row_to_input_exact_integers);
     RUN_TEST(test_values_that_do_not_fit_are_errors);
     RUN_TEST(test_edges_that_fit);
+    RUN_TEST(test_decimal_ties_round_away_from_zero);
     RUN_TEST(test_fixed_to_real);
     RUN_TEST(test_header_and_row_text);
     return UNITY_END();

@@ -116,26 +116,118 @@ static void test_number_too_long_text_is_refused_not_cut(void)
     char buf[500];
     memset(buf, '1', sizeof buf);
     double v = 0.0;
-    TEST_ASSERT_EQUAL_STRING("number text too long", ht_parse_number(buf, sizeof buf, &v));
+    TEST_ASSERT_EQUAL_STRING("number text longer than 400 characters",
+                             ht_parse_number(buf, sizeof buf, &v));
+    /* the limit itself, blanks around not counted; one more is refused */
+    char edge[412];
+    memset(edge, ' ', sizeof edge);
+    memset(edge + 5, '0', HT_NUMBER_MAX_TEXT);
+    TEST_ASSERT_NULL(ht_parse_number(edge, sizeof edge, &v));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, v);
+    edge[5 + HT_NUMBER_MAX_TEXT] = '1';
+    TEST_ASSERT_EQUAL_STRING("number text longer than 400 characters",
+                             ht_parse_number(edge, sizeof edge, &v));
 }
 
-static void test_scale_round_halves_away_and_bounds(void)
+static long dround(const char *text, unsigned long scale, long lo, long hi)
 {
-    long r = 0;
-    TEST_ASSERT_EQUAL_INT(0, ht_scale_round(0.5 / 16384.0, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT32(1, r);
-    TEST_ASSERT_EQUAL_INT(0, ht_scale_round(-0.5 / 16384.0, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT32(-1, r);
-    TEST_ASSERT_EQUAL_INT(0, ht_scale_round(-2.0, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT32(-32768, r);
-    TEST_ASSERT_EQUAL_INT(0, ht_scale_round(1.99996, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT32(32767, r);
-    r = 5;
-    /* 1.99997 * 16384 = 32767.508 rounds to 32768: does not fit. */
-    TEST_ASSERT_EQUAL_INT(-1, ht_scale_round(1.99997, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT(-1, ht_scale_round(-2.0001, 16384.0, -32768, 32767, &r));
-    TEST_ASSERT_EQUAL_INT(-1, ht_scale_round(1e308, 65536.0, -2147483647L - 1, 2147483647L, &r));
-    TEST_ASSERT_EQUAL_INT32(5, r);
+    long r = 123456789;
+    if (ht_decimal_round(text, strlen(text), scale, lo, hi, &r) != 0) {
+        TEST_ASSERT_EQUAL_INT32(123456789, r); /* untouched */
+        return -999999999;
+    }
+    return r;
+}
+#define NOFIT (-999999999)
+
+static void test_decimal_round_halves_away_and_bounds(void)
+{
+    /* half a Q14 step, exactly, both signs */
+    TEST_ASSERT_EQUAL_INT32(1, dround("0.000030517578125", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(-1, dround("-0.000030517578125", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(0, dround("0.000030517578124999", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(-32768, dround("-2.0", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(32767, dround("1.99996", 16384, -32768, 32767));
+    /* 1.99997 * 16384 = 32767.508 rounds to 32768: does not fit */
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("1.99997", 16384, -32768, 32767));
+    /* the last value that fits, and the first tie that does not */
+    TEST_ASSERT_EQUAL_INT32(32767, dround("1.999969482421874999999", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("1.999969482421875", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("-2.0001", 16384, -32768, 32767));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("1e308", 65536, INT32_MIN, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("1e99999999999999999999", 65536, INT32_MIN, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(0, dround("1e-99999999999999999999", 65536, INT32_MIN, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(0, dround("-0.0e5", 65536, INT32_MIN, INT32_MAX));
+    /* decimal ties that a double misses (1.005 is 1.00499999999999989... in
+     * binary): README, "halves away from zero" */
+    TEST_ASSERT_EQUAL_INT32(101, dround("1.005", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(-101, dround("-1.005", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(100, dround("1.00499999999999999999999999", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(32767, dround("327.674999", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("327.675", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(-32768, dround("-327.68499", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("-327.685", 100, INT16_MIN, INT16_MAX));
+    /* spellings: exponent, leading zeros, signs, blanks */
+    TEST_ASSERT_EQUAL_INT32(101, dround(" +0.1005e1\t", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(101, dround("000100.5E-2", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(101, dround("10050e-4", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(1500, dround("15.", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(25, dround(".25", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("abc", 100, INT16_MIN, INT16_MAX));
+    TEST_ASSERT_EQUAL_INT32(NOFIT, dround("", 100, INT16_MIN, INT16_MAX));
+}
+
+/* Every tie n + 1/2 of a seeded sweep, written as a decimal, and one digit
+ * either side of it far down (where a double cannot see): exact answers from
+ * integer arithmetic. Q14, Q11, Q16 and cm/s. */
+static void test_decimal_round_seeded_ties(void)
+{
+    const unsigned long scales[4] = {16384, 2048, 65536, 100};
+    uint64_t rng = 0x1005;
+    for (int k = 0; k < 20000; k++) {
+        rng = rng * 6364136223846793005u + 1442695040888963407u;
+        unsigned long scale = scales[k % 4];
+        long n = (long)((rng >> 33) % 60000u) - 30000; /* the tie (n + 1/2) / scale */
+        /* |2n + 1| / (2 scale) by long division: 2 scale (2^a, or 200)
+         * divides 10^21, so 21 decimals are exact. */
+        int neg = 2 * n + 1 < 0;
+        unsigned long long a = (unsigned long long)(neg ? -(2 * n + 1) : 2 * n + 1);
+        unsigned long long den = 2ull * scale;
+        long long ip = (long long)(a / den);
+        unsigned long long r = a % den;
+        const unsigned j = 21;
+        char frac[32], text[64], lo[96], hi[96];
+        for (unsigned i = 0; i < j; i++) {
+            r *= 10u;
+            frac[i] = (char)('0' + (int)(r / den));
+            r %= den;
+        }
+        TEST_ASSERT_EQUAL_UINT64(0, r);
+        frac[j] = '\0';
+        (void)snprintf(text, sizeof text, "%s%lld.%s", neg ? "-" : "", ip, frac);
+        (void)snprintf(lo, sizeof lo, "%s%lld.%s%s", neg ? "-" : "", ip, frac, "0000001");
+        long want = neg ? n : n + 1; /* away from zero: |tie| rounds up */
+        long got = 0;
+        TEST_ASSERT_EQUAL_INT(0, ht_decimal_round(text, strlen(text), scale, -40000, 40000, &got));
+        TEST_ASSERT_EQUAL_INT32_MESSAGE(want, got, text);
+        /* a hair further from zero: same; a hair closer: the other way */
+        TEST_ASSERT_EQUAL_INT(0, ht_decimal_round(lo, strlen(lo), scale, -40000, 40000, &got));
+        TEST_ASSERT_EQUAL_INT32_MESSAGE(want, got, lo);
+        /* the tie minus 10^-30 in magnitude: ...(digits - 1)999999999 */
+        (void)snprintf(hi, sizeof hi, "%s", text);
+        size_t m = strlen(hi);
+        size_t p = m - 1;
+        while (hi[p] == '0' || hi[p] == '.') { /* borrow */
+            if (hi[p] == '0') {
+                hi[p] = '9';
+            }
+            p--;
+        }
+        hi[p] = (char)(hi[p] - 1);
+        (void)snprintf(hi + m, sizeof hi - m, "%s", "999999999");
+        TEST_ASSERT_EQUAL_INT(0, ht_decimal_round(hi, strlen(hi), scale, -40000, 40000, &got));
+        TEST_ASSERT_EQUAL_INT32_MESSAGE(neg ? n + 1 : n, got, hi);
+    }
 }
 
 /* --- header ----------------------------------------------------------------- */
@@ -433,7 +525,8 @@ int main(void)
     RUN_TEST(test_number_accepts_decimal_forms);
     RUN_TEST(test_number_rejects_everything_else);
     RUN_TEST(test_number_too_long_text_is_refused_not_cut);
-    RUN_TEST(test_scale_round_halves_away_and_bounds);
+    RUN_TEST(test_decimal_round_halves_away_and_bounds);
+    RUN_TEST(test_decimal_round_seeded_ties);
     RUN_TEST(test_header_canonical_order);
     RUN_TEST(test_header_any_order_extra_columns_blanks_and_quotes);
     RUN_TEST(test_header_unprintable_name_in_message);

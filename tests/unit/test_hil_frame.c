@@ -85,7 +85,8 @@ static void test_resynchronises_after_garbage(void)
     TEST_ASSERT_GREATER_THAN_UINT16(0, dec.stats.skipped_bytes);
 }
 
-/* Every single-bit error in a frame is caught; the following frames land. */
+/* Every single-bit error in a frame is caught; the very next frame lands, at
+ * its own last byte. */
 static void test_every_single_bit_error_is_dropped(void)
 {
     uint8_t payload[8] = {10, 20, 30, 40, 50, 60, 70, 80}, frame[HIL_FRAME_MAX];
@@ -97,16 +98,89 @@ static void test_every_single_bit_error_is_dropped(void)
             memcpy(bad, frame, n);
             bad[byte] ^= (uint8_t)(1u << bit);
             TEST_ASSERT_EQUAL_INT(0, push_all(bad, n));
-            /* a corrupted length can swallow up to a maximal payload of the
-             * frames after it (64 bytes: five of these 14-byte frames); the
-             * sixth good frame must land, intact */
-            for (int k = 0; k < 5; k++) {
-                (void)push_all(frame, n);
-            }
-            TEST_ASSERT_EQUAL_INT(1, push_all(frame, n));
+            TEST_ASSERT_EQUAL_INT(0, push_all(frame, n - 1u));
+            TEST_ASSERT_EQUAL_INT(1, hil_decoder_push(&dec, frame[n - 1u]));
             TEST_ASSERT_EQUAL_UINT8_ARRAY(payload, dec.payload, 8);
+            TEST_ASSERT_EQUAL_UINT16(1, dec.stats.frames_ok);
         }
     }
+}
+
+/* The issue's case: a length byte corrupted to 64 used to swallow the next 64
+ * bytes, eleven 6-byte frames. Now every one of them lands at its last byte,
+ * and the bad frame is counted once. */
+static void test_corrupted_length_loses_only_its_frame(void)
+{
+    uint8_t frame[HIL_FRAME_MAX], bad[HIL_FRAME_MAX];
+    size_t n = hil_encode(2, NULL, 0, frame, sizeof frame); /* 6 bytes */
+    memcpy(bad, frame, n);
+    bad[2] = HIL_PAYLOAD_MAX;
+    TEST_ASSERT_EQUAL_INT(0, push_all(bad, n));
+    for (int k = 0; k < 12; k++) {
+        TEST_ASSERT_EQUAL_INT(0, push_all(frame, n - 1u));
+        TEST_ASSERT_EQUAL_INT(1, hil_decoder_push(&dec, frame[n - 1u]));
+        TEST_ASSERT_EQUAL_UINT8(2, dec.id);
+    }
+    TEST_ASSERT_EQUAL_UINT16(12, dec.stats.frames_ok);
+    TEST_ASSERT_EQUAL_UINT16(1, dec.stats.bad_crc); /* cut short by the first good one */
+    /* its other five bytes, searched again, start no frame */
+    TEST_ASSERT_EQUAL_UINT16(5, dec.stats.skipped_bytes);
+    TEST_ASSERT_EQUAL_UINT8(0, dec.held);
+}
+
+/* A frame cut short: the next frame starts inside the span the bad one
+ * claimed, and lands at its own last byte. */
+static void test_truncated_frame_loses_only_itself(void)
+{
+    uint8_t payload[8] = {1, 2, 3, 4, 5, 6, 7, 8}, frame[HIL_FRAME_MAX];
+    size_t n = hil_encode(1, payload, 8, frame, sizeof frame);
+    for (size_t cut = 1; cut < n; cut++) {
+        hil_decoder_init(&dec, table);
+        TEST_ASSERT_EQUAL_INT(0, push_all(frame, cut));
+        TEST_ASSERT_EQUAL_INT(0, push_all(frame, n - 1u));
+        TEST_ASSERT_EQUAL_INT(1, hil_decoder_push(&dec, frame[n - 1u]));
+        TEST_ASSERT_EQUAL_UINT16(cut >= 3 ? 1 : 0, dec.stats.bad_crc);
+    }
+}
+
+/* The price of taking every frame at its own last byte: a whole valid frame
+ * inside a payload ends first and is taken; the frame around it is counted
+ * as cut short (hil_frame.h). A candidate inside a good frame that would end
+ * after it is not a frame: the outer one is taken when it ends. */
+static void test_frame_inside_a_payload(void)
+{
+    uint8_t inner[HIL_FRAME_MAX], outer[HIL_FRAME_MAX], next[HIL_FRAME_MAX];
+    const uint8_t two[2] = {0xA5, 0x5A};
+    size_t ni = hil_encode(3, two, 2, inner, sizeof inner);
+    TEST_ASSERT_EQUAL_UINT64(8, (uint64_t)ni);
+    size_t no = hil_encode(0, inner, (uint8_t)ni, outer, sizeof outer);
+    int got = 0;
+    for (size_t i = 0; i < no; i++) {
+        if (hil_decoder_push(&dec, outer[i])) {
+            got++;
+            TEST_ASSERT_EQUAL_UINT64(4 + ni, (uint64_t)(i + 1)); /* the inner frame's end */
+            TEST_ASSERT_EQUAL_UINT8(3, dec.id);
+            TEST_ASSERT_EQUAL_HEX8(0xA5, dec.payload[0]);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(1, got);
+    TEST_ASSERT_EQUAL_UINT16(1, dec.stats.bad_crc); /* the outer frame, cut short */
+    /* its header but the counted sync byte, and its CRC */
+    TEST_ASSERT_EQUAL_UINT16(3 + 2, dec.stats.skipped_bytes);
+    size_t nn = hil_encode(1, outer, 8, next, sizeof next);
+    TEST_ASSERT_EQUAL_INT(1, push_all(next, nn));
+
+    /* An "A5 5A 40" inside a payload claims 64 bytes past the frame's end:
+     * the frame is taken at its end, and the claim is dropped with it. */
+    hil_decoder_init(&dec, table);
+    uint8_t p[8] = {0xA5, 0x5A, 0x40, 0x00, 0xA5, 0x5A, 0x00, 0x02};
+    nn = hil_encode(1, p, 8, next, sizeof next);
+    TEST_ASSERT_EQUAL_INT(1, push_all(next, nn));
+    TEST_ASSERT_EQUAL_UINT8(0, dec.held);
+    TEST_ASSERT_EQUAL_INT(1, push_all(next, nn));
+    TEST_ASSERT_EQUAL_UINT16(2, dec.stats.frames_ok);
+    TEST_ASSERT_EQUAL_UINT16(0, dec.stats.bad_crc);
+    TEST_ASSERT_EQUAL_UINT16(0, dec.stats.skipped_bytes);
 }
 
 static void test_unknown_ids_and_wrong_lengths_are_counted(void)
@@ -201,6 +275,9 @@ int main(void)
     RUN_TEST(test_encode_refuses_what_does_not_fit);
     RUN_TEST(test_resynchronises_after_garbage);
     RUN_TEST(test_every_single_bit_error_is_dropped);
+    RUN_TEST(test_corrupted_length_loses_only_its_frame);
+    RUN_TEST(test_truncated_frame_loses_only_itself);
+    RUN_TEST(test_frame_inside_a_payload);
     RUN_TEST(test_unknown_ids_and_wrong_lengths_are_counted);
     RUN_TEST(test_counters_saturate);
     RUN_TEST(test_field_helpers_round_trip_at_the_edges);

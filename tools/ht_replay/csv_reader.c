@@ -343,13 +343,14 @@ ht_csv_line_status_t ht_csv_read_line(FILE *f, ht_csv_line_t *line, const ht_csv
         return HT_CSV_LINE_EOF;
     }
     line->number++;
+    const size_t max_len =
+        line->max_len != 0 && line->max_len < HT_CSV_MAX_LINE ? line->max_len : HT_CSV_MAX_LINE;
     /* One byte more than the limit is kept so that the '\r' of a "\r\n"
      * ending a line of exactly the limit still fits. */
     while (c != EOF && c != '\n') {
-        if (line->len > HT_CSV_MAX_LINE) {
+        if (line->len > max_len) {
             set_column_field(err, header, field_at_limit(line));
-            set_error(err, line->number, "line longer than %lu bytes",
-                      (unsigned long)HT_CSV_MAX_LINE);
+            set_error(err, line->number, "line longer than %lu bytes", (unsigned long)max_len);
             return HT_CSV_LINE_ERR;
         }
         if (line_reserve(line) != 0) {
@@ -368,9 +369,9 @@ ht_csv_line_status_t ht_csv_read_line(FILE *f, ht_csv_line_t *line, const ht_csv
     if (line->len > 0 && line->text[line->len - 1] == '\r') {
         line->len--;
     }
-    if (line->len > HT_CSV_MAX_LINE) {
+    if (line->len > max_len) {
         set_column_field(err, header, field_at_limit(line));
-        set_error(err, line->number, "line longer than %lu bytes", (unsigned long)HT_CSV_MAX_LINE);
+        set_error(err, line->number, "line longer than %lu bytes", (unsigned long)max_len);
         return HT_CSV_LINE_ERR;
     }
     if (line_reserve(line) != 0) { /* an empty line has no buffer yet */
@@ -425,6 +426,14 @@ static void show_text(const char *s, size_t len, char *buf, size_t size)
 int ht_csv_parse_row(const ht_csv_header_t *h, const char *text, size_t len,
                      unsigned long line_number, double values[HT_COL_COUNT], ht_csv_error_t *err)
 {
+    ht_csv_field_t fields[HT_COL_COUNT];
+    return ht_csv_parse_row_fields(h, text, len, line_number, values, fields, err);
+}
+
+int ht_csv_parse_row_fields(const ht_csv_header_t *h, const char *text, size_t len,
+                            unsigned long line_number, double values[HT_COL_COUNT],
+                            ht_csv_field_t fields[HT_COL_COUNT], ht_csv_error_t *err)
+{
     if (text == NULL) {
         text = "";
         len = 0;
@@ -460,6 +469,8 @@ int ht_csv_parse_row(const ht_csv_header_t *h, const char *text, size_t len,
         }
         int c = h->column_of[k];
         if (c >= 0) {
+            fields[c].text = f.start;
+            fields[c].len = f.len;
             const char *why = ht_parse_number(f.start, f.len, &values[c]);
             if (why != NULL) {
                 char shown[40];

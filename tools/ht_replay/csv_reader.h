@@ -95,11 +95,13 @@ typedef struct {
     size_t len;           /* bytes in text (may include NUL bytes) */
     size_t cap;           /* allocated bytes */
     unsigned long number; /* 1-based number of the line last read */
+    size_t max_len;       /* longest line accepted; 0: HT_CSV_MAX_LINE (a fuzz target sets it
+                             lower to reach the limit with short inputs; never above it) */
 } ht_csv_line_t;
 
 #define HT_CSV_LINE_INIT                                                                           \
     {                                                                                              \
-        NULL, 0, 0, 0                                                                              \
+        NULL, 0, 0, 0, 0                                                                           \
     }
 
 void ht_csv_line_free(ht_csv_line_t *line);
@@ -138,5 +140,17 @@ int ht_csv_read_header(FILE *f, ht_csv_line_t *line, ht_csv_header_t *h, ht_csv_
  */
 int ht_csv_parse_row(const ht_csv_header_t *h, const char *text, size_t len,
                      unsigned long line_number, double values[HT_COL_COUNT], ht_csv_error_t *err);
+
+/* A field's text inside the line (quotes removed, blanks kept; valid while the
+ * line is). The exact conversions (ht_decimal_round) work on the text. */
+typedef struct {
+    const char *text;
+    size_t len;
+} ht_csv_field_t;
+
+/* ht_csv_parse_row, also giving each input column's text in fields[]. */
+int ht_csv_parse_row_fields(const ht_csv_header_t *h, const char *text, size_t len,
+                            unsigned long line_number, double values[HT_COL_COUNT],
+                            ht_csv_field_t fields[HT_COL_COUNT], ht_csv_error_t *err);
 
 #endif /* HT_REPLAY_CSV_READER_H */

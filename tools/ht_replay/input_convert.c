@@ -8,29 +8,37 @@
 
 /* How one column is stored in ht_input_t. */
 typedef struct {
-    double scale;
+    unsigned long scale;
     long lo, hi;
     const char *format; /* for the message */
 } col_format_t;
 
-static const col_format_t q14_fmt = {16384.0, INT16_MIN, INT16_MAX, "Q14, [-2, 1.99994]"};
-static const col_format_t q11_fmt = {2048.0, INT16_MIN, INT16_MAX, "Q11 rad/s, [-16, 15.9995]"};
-static const col_format_t q16_fmt = {65536.0, INT32_MIN, INT32_MAX, "Q16, [-32768, 32767.99998]"};
-static const col_format_t cm_fmt = {100.0, INT16_MIN, INT16_MAX,
+static const col_format_t q14_fmt = {16384u, INT16_MIN, INT16_MAX, "Q14, [-2, 1.99994]"};
+static const col_format_t q11_fmt = {2048u, INT16_MIN, INT16_MAX, "Q11 rad/s, [-16, 15.9995]"};
+static const col_format_t q16_fmt = {65536u, INT32_MIN, INT32_MAX, "Q16, [-32768, 32767.99998]"};
+static const col_format_t cm_fmt = {100u, INT16_MIN, INT16_MAX,
                                     "int16 cm/s, [-327.68, 327.67] m/s"};
 
-static void out_of_range(ht_csv_error_t *err, unsigned long line, ht_csv_col_t c, double v,
-                         const char *format)
+static void set_column(ht_csv_error_t *err, unsigned long line, ht_csv_col_t c)
 {
     err->line = line;
     (void)snprintf(err->column, sizeof err->column, "%s", ht_csv_col_name(c));
-    (void)snprintf(err->message, sizeof err->message, "%.10g does not fit the core's format (%s)",
-                   v, format);
 }
 
-int ht_replay_to_input(const double values[HT_COL_COUNT], unsigned long line_number, ht_input_t *in,
-                       ht_csv_error_t *err)
+int ht_replay_to_input(const ht_csv_field_t fields[HT_COL_COUNT], unsigned long line_number,
+                       ht_input_t *in, ht_csv_error_t *err)
 {
+    /* The real values, for the messages and the flag (the CSV reader has
+     * already checked the grammar; this is not the conversion). */
+    double values[HT_COL_COUNT];
+    for (int c = 0; c < (int)HT_COL_COUNT; c++) {
+        const char *why = ht_parse_number(fields[c].text, fields[c].len, &values[c]);
+        if (why != NULL) {
+            set_column(err, line_number, (ht_csv_col_t)c);
+            (void)snprintf(err->message, sizeof err->message, "%s", why);
+            return -1;
+        }
+    }
     static const struct {
         ht_csv_col_t col;
         const col_format_t *fmt;
@@ -43,8 +51,11 @@ int ht_replay_to_input(const double values[HT_COL_COUNT], unsigned long line_num
     for (size_t i = 0; i < sizeof plan / sizeof plan[0]; i++) {
         ht_csv_col_t c = plan[i].col;
         const col_format_t *f = plan[i].fmt;
-        if (ht_scale_round(values[c], f->scale, f->lo, f->hi, &fixed[c]) != 0) {
-            out_of_range(err, line_number, c, values[c], f->format);
+        if (ht_decimal_round(fields[c].text, fields[c].len, f->scale, f->lo, f->hi, &fixed[c]) !=
+            0) {
+            set_column(err, line_number, c);
+            (void)snprintf(err->message, sizeof err->message,
+                           "%.10g does not fit the core's format (%s)", values[c], f->format);
             return -1;
         }
     }
@@ -52,8 +63,7 @@ int ht_replay_to_input(const double values[HT_COL_COUNT], unsigned long line_num
      * value to round. */
     double inv = values[HT_COL_INVERTED];
     if (inv != 0.0 && inv != 1.0) {
-        err->line = line_number;
-        (void)snprintf(err->column, sizeof err->column, "%s", ht_csv_col_name(HT_COL_INVERTED));
+        set_column(err, line_number, HT_COL_INVERTED);
         (void)snprintf(err->message, sizeof err->message, "%.10g is not 0 or 1", inv);
         return -1;
     }

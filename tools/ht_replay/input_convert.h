@@ -23,11 +23,14 @@
 #include "helical/helical_turn.h"
 
 /*
- * Convert values[] (indexed by ht_csv_col_t, as ht_csv_parse_row fills it)
- * into *in. Returns 0, or -1 with err naming line_number and the first column,
- * in the order of ht_csv_col_t, that does not fit.
+ * Convert the fields' texts (indexed by ht_csv_col_t, as
+ * ht_csv_parse_row_fields gives them) into *in, each rounded exactly from its
+ * decimal digits to the nearest step of its format, halves away from zero
+ * (ht_decimal_round). Returns 0, or -1 with err naming line_number and the
+ * first column, in the order of ht_csv_col_t, that is not a number or does
+ * not fit.
  */
-int ht_replay_to_input(const double values[HT_COL_COUNT], unsigned long line_number, ht_input_t *in,
-                       ht_csv_error_t *err);
+int ht_replay_to_input(const ht_csv_field_t fields[HT_COL_COUNT], unsigned long line_number,
+                       ht_input_t *in, ht_csv_error_t *err);
 
 #endif /* HT_REPLAY_INPUT_CONVERT_H */

@@ -43,8 +43,10 @@ static void usage(FILE *out)
                 "  airspeed     m/s                        -> int16 cm/s, fits [-327.68, 327.67]\n"
                 "  gyro_x, gyro_y, gyro_z  rad/s           -> Q11, fits [-16, 15.9995]\n"
                 "  inverted     0 or 1\n"
-                "Values are rounded to the nearest LSB. A value that does not fit its format\n"
-                "is an error, not a clamp. Lines end in LF or CRLF; a field may be quoted.\n"
+                "Values are rounded to the nearest LSB from their decimal digits, exactly,\n"
+                "halves away from zero. A value that does not fit its format\n"
+                "is an error, not a clamp. A number is at most 400 characters. Lines end in\n"
+                "LF or CRLF and are at most 1 MiB; a field may be quoted.\n"
                 "\n"
                 "Output: a header, then per row: turn_rate_used, tilt_x, tilt_y, tilt_z,\n"
                 "rate_x, rate_y, rate_z, roll_dot, roll_cross, roll_error, pitch_error,\n"
@@ -77,9 +79,11 @@ static int fail_csv(const ht_csv_error_t *err)
     return err->column[0] != '\0' ? EXIT_BAD_INPUT : EXIT_IO;
 }
 
-/* Parse the command line into *params; returns EXIT_OK, or the exit status
- * (with *stop set for --help, which succeeds without running). */
-static int parse_args(int argc, char **argv, ht_params_t *params, int given[HT_P_COUNT], int *stop)
+/* Parse the command line into *params, keeping the text of each value given
+ * (the last one wins) in given[]; returns EXIT_OK, or the exit status (with
+ * *stop set for --help, which succeeds without running). */
+static int parse_args(int argc, char **argv, ht_params_t *params, const char *given[HT_P_COUNT],
+                      int *stop)
 {
     *stop = 0;
     for (int i = 1; i < argc; i++) {
@@ -88,6 +92,12 @@ static int parse_args(int argc, char **argv, ht_params_t *params, int given[HT_P
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             *stop = 1;
+            /* A help text that did not reach its reader is a failure
+             * (`ht_replay --help > /dev/full`), like any other output. */
+            if (fflush(stdout) != 0 || ferror(stdout)) {
+                (void)fprintf(stderr, "ht_replay: error writing the help text\n");
+                return EXIT_IO;
+            }
             return EXIT_OK;
         } else if (strcmp(a, "--param") == 0) {
             if (i + 1 >= argc) {
@@ -110,7 +120,7 @@ static int parse_args(int argc, char **argv, ht_params_t *params, int given[HT_P
             (void)fprintf(stderr, "ht_replay: %s\n", msg);
             return EXIT_USAGE;
         }
-        given[id] = 1;
+        given[id] = strchr(spec, '=') + 1; /* parsed: the '=' is there */
     }
     return EXIT_OK;
 }
@@ -133,10 +143,12 @@ static int run(const ht_controller_t *ctl)
             break;
         }
         double values[HT_COL_COUNT];
+        ht_csv_field_t fields[HT_COL_COUNT];
         ht_input_t in;
         if (s == HT_CSV_LINE_ERR ||
-            ht_csv_parse_row(&header, line.text, line.len, line.number, values, &err) != 0 ||
-            ht_replay_to_input(values, line.number, &in, &err) != 0) {
+            ht_csv_parse_row_fields(&header, line.text, line.len, line.number, values, fields,
+                                    &err) != 0 ||
+            ht_replay_to_input(fields, line.number, &in, &err) != 0) {
             status = fail_csv(&err);
             break;
         }
@@ -155,7 +167,7 @@ static int run(const ht_controller_t *ctl)
 int main(int argc, char **argv)
 {
     ht_params_t params = HT_PARAMS_DEFAULT;
-    int given[HT_P_COUNT] = {0};
+    const char *given[HT_P_COUNT] = {NULL};
     int stop = 0;
     int status = parse_args(argc, argv, &params, given, &stop);
     if (status != EXIT_OK || stop) {
@@ -169,14 +181,21 @@ int main(int argc, char **argv)
         /* The core is the one authority on ranges; the tool reports its verdict
          * with the value in --param units, and says when it was a default. */
         const char *name = ht_param_name(bad);
-        char value[32];
-        (void)ht_param_format_value(&params, bad, value, sizeof value);
         int known = (int)bad > (int)HT_P_NONE && (int)bad < (int)HT_P_COUNT;
+        const char *as_given = known ? given[bad] : NULL;
+        /* The value as the user wrote it (64.00001 is refused, and "64" would
+         * not say why); a default in --param units. */
+        char value[HT_PARAM_SHOWN_MAX];
+        if (as_given != NULL) {
+            ht_param_show_text(as_given, value, sizeof value);
+        } else {
+            (void)ht_param_format_value(&params, bad, value, sizeof value);
+        }
         (void)fprintf(stderr,
                       "ht_replay: parameter %s=%s%s: refused by ht_init (outside the range the "
                       "law allows; see --help)\n",
                       name[0] != '\0' ? name : "(unknown)", value,
-                      known && !given[bad] ? " (the default)" : "");
+                      known && as_given == NULL ? " (the default)" : "");
         return EXIT_USAGE;
     }
 

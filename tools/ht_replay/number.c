@@ -6,12 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Longest number text handed to strtod. Longer fields are refused rather than
- * cut: 400 characters is far beyond any value a log writes (a double has 17
- * significant digits), and the fixed buffer keeps this function free of
- * allocation. */
-#define HT_NUMBER_MAX_TEXT 400
-
 static int is_blank(char c)
 {
     return c == ' ' || c == '\t';
@@ -114,7 +108,7 @@ const char *ht_parse_number(const char *text, size_t len, double *out)
         return "not a number";
     }
     if (len > HT_NUMBER_MAX_TEXT) {
-        return "number text too long";
+        return "number text longer than 400 characters";
     }
 
     char buf[HT_NUMBER_MAX_TEXT + 1];
@@ -133,13 +127,86 @@ const char *ht_parse_number(const char *text, size_t len, double *out)
     return NULL;
 }
 
-int ht_scale_round(double v, double scale, long lo, long hi, long *out)
+/* Strip blanks from both ends of text[0..*len). */
+static const char *trim_blanks(const char *text, size_t *len)
 {
-    double r = round(v * scale);
-    /* Written so that a NaN fails the test and is refused. */
-    if (!(r >= (double)lo && r <= (double)hi)) {
+    while (*len > 0 && is_blank(text[0])) {
+        text++;
+        (*len)--;
+    }
+    while (*len > 0 && is_blank(text[*len - 1])) {
+        (*len)--;
+    }
+    return text;
+}
+
+int ht_decimal_round(const char *text, size_t len, unsigned long scale, long lo, long hi, long *out)
+{
+    text = trim_blanks(text, &len);
+    if (len == 0 || len > HT_NUMBER_MAX_TEXT || match_decimal(text, len) != len || scale == 0 ||
+        scale > (1ul << 20)) {
         return -1;
     }
-    *out = (long)r;
+    /* The value is 0.d[0]d[1]...d[n-1] * 10^point, d[0] != 0 (or n == 0). */
+    unsigned char d[HT_NUMBER_MAX_TEXT];
+    size_t n = 0, i = 0;
+    long point = 0;
+    int negative = 0;
+    if (text[i] == '+' || text[i] == '-') {
+        negative = text[i] == '-';
+        i++;
+    }
+    int in_fraction = 0;
+    for (; i < len && (is_digit(text[i]) || text[i] == '.'); i++) {
+        if (text[i] == '.') {
+            in_fraction = 1;
+        } else if (n == 0 && text[i] == '0') {
+            point -= in_fraction; /* a leading zero: only a fraction's moves the point */
+        } else {
+            d[n++] = (unsigned char)(text[i] - '0');
+            point += !in_fraction;
+        }
+    }
+    if (i < len) { /* the exponent, saturated: beyond +-100000 the answer is clear */
+        i++;
+        int exp_negative = text[i] == '-';
+        i += (text[i] == '+' || text[i] == '-') ? 1u : 0u;
+        long e = 0;
+        for (; i < len; i++) {
+            e = e > 100000 ? e : e * 10 + (text[i] - '0');
+        }
+        point += exp_negative ? -e : e;
+    }
+
+    /* floor(|v| * 2 * scale), then (that + 1) / 2 = |v| * scale rounded with
+     * halves up: floor((x + 1) / 2) == floor((floor(x) + 1) / 2). */
+    const unsigned long long twice = 2ull * scale;
+    unsigned long long whole = 0; /* floor(|v| * twice) */
+    if (n > 0 && point > 12) {
+        return -1; /* |v| >= 10^12: beyond any long range asked for here */
+    }
+    if (n > 0 && point >= -12) { /* else |v| * twice < 10^-12 * 2^21 < 1 */
+        unsigned long long int_part = 0;
+        for (long k = 0; k < point; k++) {
+            int_part = int_part * 10u + ((size_t)k < n ? (unsigned long long)d[k] : 0u);
+        }
+        /* The fraction's digits times twice, from the last digit up: the
+         * carry out of the first is floor(fraction * twice), exactly. */
+        unsigned long long carry = 0;
+        size_t first = point > 0 ? (size_t)point : 0u;
+        for (size_t k = n; k > first; k--) {
+            carry = ((unsigned long long)d[k - 1] * twice + carry) / 10u;
+        }
+        for (long z = point; z < 0; z++) { /* the fraction's leading zeros */
+            carry /= 10u;
+        }
+        whole = int_part * twice + carry;
+    }
+    long long magnitude = (long long)((whole + 1u) / 2u);
+    long long q = negative ? -magnitude : magnitude;
+    if (q < lo || q > hi) {
+        return -1;
+    }
+    *out = (long)q;
     return 0;
 }

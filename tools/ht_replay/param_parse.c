@@ -106,6 +106,11 @@ static void show(const char *s, char *buf, size_t size)
     show_n(s, strlen(s), buf, size);
 }
 
+void ht_param_show_text(const char *text, char *buf, size_t size)
+{
+    show(text, buf, size);
+}
+
 int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg, size_t size)
 {
     char shown[44];
@@ -157,7 +162,7 @@ int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg
         long fixed = 0;
         switch (d->kind) {
         case KIND_GAIN_Q16:
-            if (ht_scale_round(v, 65536.0, INT32_MIN, INT32_MAX, &fixed) != 0) {
+            if (ht_decimal_round(value, strlen(value), 65536u, INT32_MIN, INT32_MAX, &fixed) != 0) {
                 (void)snprintf(msg, size, "--param %s: %s does not fit Q16 [-32768, 32767.99998]",
                                d->name, shown);
                 return -1;
@@ -165,7 +170,7 @@ int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg
             *q16_field(p, d->id) = (q16_t)fixed;
             break;
         case KIND_SPEED_CM_S:
-            if (ht_scale_round(v, 100.0, INT32_MIN, INT32_MAX, &fixed) != 0) {
+            if (ht_decimal_round(value, strlen(value), 100u, INT32_MIN, INT32_MAX, &fixed) != 0) {
                 (void)snprintf(msg, size, "--param %s: %s m/s does not fit int32 cm/s", d->name,
                                shown);
                 return -1;

@@ -39,6 +39,13 @@ const char *ht_param_tool_name(ht_param_id_t id);
  * "earth"), to buf. Returns 0, or -1 (and "?") if id is not a parameter. */
 int ht_param_format_value(const ht_params_t *p, ht_param_id_t id, char *buf, size_t size);
 
+/* Room for a value shown in a message: longer ones are cut, ending in "...". */
+#define HT_PARAM_SHOWN_MAX 72
+
+/* A value's text as the user gave it, for a message: bytes outside printable
+ * ASCII as '?', cut with "..." to fit buf (size >= 4). */
+void ht_param_show_text(const char *text, char *buf, size_t size);
+
 /* Print one line per parameter: name, unit and the value in *p, in the
  * units of --param (used by --help with the defaults). */
 void ht_param_print_table(FILE *out, const ht_params_t *p);
