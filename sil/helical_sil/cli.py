@@ -4,14 +4,64 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+import tempfile
 import time
+import traceback
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterable
 
 from helical_sil.board import BoardError
-from helical_sil.scenario import ScenarioError, load_scenario
+from helical_sil.scenario import Scenario, ScenarioError, load_scenario
 from helical_sil.sim import SimError
+
+# The exit status of every subcommand: one text, shown by each --help and
+# mirrored in sil/README.md ("Exit status").
+EXIT_OK, EXIT_CRITERION, EXIT_INPUT, EXIT_RUNTIME, EXIT_BUG = 0, 1, 2, 3, 4
+EXIT_STATUS = """exit status:
+  0  every pass criterion passed (compare: the table was printed)
+  1  a pass criterion failed (batch: in at least one scenario; upsets: an upset
+     was not recovered, or a known failure recovered)
+  2  bad input or usage, found before anything is flown: a scenario or aircraft
+     file that does not load (the message names the file and the key), an --out
+     that is not a writable folder, a bad argument, an unreadable metrics.json
+  3  the board library or JSBSim failed (missing or stale library, a parameter
+     the board refused, a run that could not finish), or writing an output
+     failed after the flight
+  4  an internal error of the harness (a bug: the traceback is printed)"""
+
+RUN_OUTPUTS = ("telemetry.csv", "metrics.json")
+
+
+class UsageError(Exception):
+    """A bad command-line argument or output folder: exit 2, nothing flown."""
+
+
+def prepare_out(arg: str, names: Iterable[str] = ()) -> Path:
+    """The output folder --out, created and proven writable before anything is
+    flown (a flight must not be lost to an output path). names: files or
+    folders that will be written in it; an existing one must be of that kind
+    (a name ending in '/' is a folder)."""
+    if not arg.strip():
+        raise UsageError("--out is empty: give an output folder ('.' for the current one)")
+    out = Path(arg)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out}: exists and is not a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=out, prefix=".helical_sil_write_test_")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as e:
+        raise UsageError(f"--out {out}: cannot write there: {e.strerror or e}") from None
+    for n in names:
+        q = out / n
+        want_dir = n.endswith("/")
+        if q.exists() and q.is_dir() != want_dir:
+            raise UsageError(f"--out {out}: {q} exists and is not a "
+                             f"{'folder' if want_dir else 'file'}")
+    return out
 
 SUMMARY_COLS = (
     ("scenario", "scenario", "{}"),
@@ -30,13 +80,15 @@ SUMMARY_COLS = (
 
 
 def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
-            csv: bool = True, seed: int | None = None) -> dict[str, Any]:
+            csv: bool = True, seed: int | None = None,
+            scenario: Scenario | None = None) -> dict[str, Any]:
     """Fly one scenario and write its outputs; returns metrics.json's content.
-    seed (fault campaign, issue 7): fly it with this seed instead of its own."""
+    seed (fault campaign, issue 7): fly it with this seed instead of its own.
+    scenario: the file already loaded (not loaded again)."""
     from helical_sil import metrics as met
     from helical_sil import sim
 
-    sc = load_scenario(path)
+    sc = scenario if scenario is not None else load_scenario(path)
     if seed is not None:
         sc.seed, sc.name = seed, f"{sc.name}_seed{seed}"
     res = sim.run(sc, board_lib)
@@ -112,17 +164,23 @@ def _progress(i: int, n: int, name: str, t0: float) -> None:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
+    sc = load_scenario(Path(args.scenario))  # exit 2 before anything is made or flown
+    names: tuple[str, ...] = RUN_OUTPUTS
+    if not args.no_plots:
+        from helical_sil.plots import PLOT_FILES
+        names += PLOT_FILES
+    out = prepare_out(args.out, names)
     # --- PIL (issue 8): --target pil flies the firmware image under QEMU ---
     if getattr(args, "target", "sil") == "pil":
         from helical_sil import pil
         with pil.as_sim_target(args.elf) as pil_runs:
-            m = run_one(Path(args.scenario), Path(args.out), args.board_lib,
-                        plots=not args.no_plots)
-        if pil.report(pil_runs[-1], Path(args.out)) != 0:
+            m = run_one(Path(args.scenario), out, args.board_lib,
+                        plots=not args.no_plots, scenario=sc)
+        if pil.report(pil_runs[-1], out) != 0:
             m["passed"] = False
     else:
-        m = run_one(Path(args.scenario), Path(args.out), args.board_lib,
-                    plots=not args.no_plots)
+        m = run_one(Path(args.scenario), out, args.board_lib,
+                    plots=not args.no_plots, scenario=sc)
     # --- end PIL ---
     print(format_table([_summary_row(m)]))
     for c in m["pass_criteria"]:
@@ -135,30 +193,51 @@ def cmd_run(args: argparse.Namespace) -> int:
     return 0 if m["passed"] else 1
 
 
-def cmd_batch(args: argparse.Namespace) -> int:
+def _batch_files(args: argparse.Namespace) -> list[Path]:
+    """The scenario files of a batch, every one loaded once: a bad file (or
+    --only naming no file) is exit 2 before anything is flown."""
     d = Path(args.directory)
-    files = sorted(p for p in d.glob("*.toml")) if d.is_dir() else []
+    try:
+        files = sorted(p for p in d.glob("*.toml") if p.is_file()) if d.is_dir() else []
+    except OSError as e:
+        raise UsageError(f"{d}: cannot list the folder: {e.strerror or e}") from None
     if not files:
-        print(f"error: no *.toml scenarios in {d}", file=sys.stderr)
-        return 2
+        raise UsageError(f"no *.toml scenarios in {d}")
     if args.only:
+        missing = sorted(set(args.only) - {f.stem for f in files})
+        if missing:
+            raise UsageError(f"--only: no scenario {', '.join(missing)} in {d}")
         files = [f for f in files if f.stem in set(args.only)]
-    out = Path(args.out)
-    rows, results = [], {}
-    t0 = time.perf_counter()
-    failed_load = False
+    errors = []
+    for f in files:
+        try:
+            load_scenario(f)
+        except ScenarioError as e:
+            errors.append(str(e))
+    if errors:
+        raise ScenarioError("\n".join(errors) + f"\n{len(errors)} bad scenario file(s); "
+                            "nothing flown")
+    return files
+
+
+def cmd_batch(args: argparse.Namespace) -> int:
+    files = _batch_files(args)
     # --- fault campaign (issue 7): --seeds flies every scenario once per seed ---
     seeds: list[int | None] = list(args.seeds) if getattr(args, "seeds", None) else [None]
     runs = [(f, sd, f.stem if sd is None else f"{f.stem}_seed{sd}") for f in files
             for sd in seeds]
+    out = prepare_out(args.out, ["summary.md", "summary.json", *(n + "/" for _f, _s, n in runs)])
+    rows, results = [], {}
+    t0 = time.perf_counter()
+    failed_run = False
     files = [f for f, _sd, _n in runs]
     for i, (f, sd, name) in enumerate(runs):
         _progress(i, len(files), name, t0)
         try:
             m = run_one(f, out / name, args.board_lib, plots=not args.no_plots, seed=sd)
-        except (ScenarioError, SimError) as e:
+        except (ScenarioError, SimError) as e:  # ScenarioError: the file changed meanwhile
             sys.stderr.write(f"\nerror: {e}\n")
-            failed_load = True
+            failed_run = True
             rows.append({"scenario": name, "result": "ERROR"})
             continue
         rows.append(_summary_row(m))
@@ -168,15 +247,17 @@ def cmd_batch(args: argparse.Namespace) -> int:
     _progress(len(files), len(files), "done", t0)
     table = format_table(rows)
     print(table)
-    out.mkdir(parents=True, exist_ok=True)
     (out / "summary.md").write_text(table + "\n")
     with (out / "summary.json").open("w") as fh:
         json.dump(results, fh, indent=2)
     n_pass = sum(r["passed"] for r in results.values())
-    n_fail = len(files) - n_pass
-    print(f"{n_pass} passed, {n_fail} failed")
+    n_fail = len(results) - n_pass
+    n_err = len(files) - len(results)
+    print(f"{n_pass} passed, {n_fail} failed" + (f", {n_err} could not be flown" if n_err else ""))
     print(f"wrote {out.resolve()}")
-    return 0 if n_fail == 0 and not failed_load else 1
+    if failed_run:
+        return EXIT_RUNTIME
+    return EXIT_OK if n_fail == 0 else EXIT_CRITERION
 
 
 COMPARE_KEYS = ("turn_entry_s", "wrong_way_yaw_deg", "entry_altitude_loss_m",
@@ -185,15 +266,36 @@ COMPARE_KEYS = ("turn_entry_s", "wrong_way_yaw_deg", "entry_altitude_loss_m",
                 "sideslip_rms_deg")
 
 
+def _load_metrics(p: Path) -> dict[str, Any]:
+    """A run's metrics.json with the fields compare reads; anything else is exit 2
+    naming the file."""
+    if not p.is_file():
+        raise UsageError(f"{p}: no such file (give run output folders)")
+    try:
+        m = json.loads(p.read_bytes().decode("utf-8"))
+    except OSError as e:
+        raise UsageError(f"{p}: cannot read: {e.strerror or e}") from None
+    except (UnicodeDecodeError, ValueError, RecursionError) as e:
+        raise UsageError(f"{p}: not a metrics.json (not JSON: {e})") from None
+    segs = m.get("segments") if isinstance(m, dict) else None
+    if (not isinstance(m, dict) or not isinstance(m.get("scenario"), str)
+            or not isinstance(segs, list)
+            or not all(isinstance(s, dict) and isinstance(s.get("label"), str) for s in segs)):
+        raise UsageError(f"{p}: not a metrics.json ('scenario' and 'segments[].label' expected)")
+    return m
+
+
+def _cell(v: Any) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return f"{v:.2f}"
+    return str(v)[:16]
+
+
 def cmd_compare(args: argparse.Namespace) -> int:
     """Side by side, per segment label, the metrics of two or more runs."""
-    runs = []
-    for d in args.runs:
-        p = Path(d) / "metrics.json"
-        if not p.is_file():
-            print(f"error: {p}: no such file", file=sys.stderr)
-            return 2
-        runs.append(json.loads(p.read_text()))
+    runs = [_load_metrics(Path(d) / "metrics.json") for d in args.runs]
     keys = tuple(args.metrics) if args.metrics else COMPARE_KEYS
     labels = [s["label"] for s in runs[0]["segments"]]
     names = [r["scenario"] for r in runs]
@@ -204,7 +306,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
             vals = [sg.get(k) for sg in segs]
             if all(v is None for v in vals):
                 continue
-            rows.append([lab, k] + ["-" if v is None else f"{v:.2f}" for v in vals])
+            rows.append([lab, k] + [_cell(v) for v in vals])
     heads = ["segment", "metric"] + names
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
               for i, h in enumerate(heads)]
@@ -218,29 +320,47 @@ def cmd_compare(args: argparse.Namespace) -> int:
 # --- fault campaign (issue 7): the upset-recovery campaign ---
 def cmd_upsets(args: argparse.Namespace) -> int:
     from helical_sil import upsets
+    from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR, load_aircraft
     if args.count < 1:
-        print("error: --count must be at least 1", file=sys.stderr)
-        return 2
+        raise UsageError("--count must be at least 1")
+    if args.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    for ac in args.aircraft:  # exit 2 before the output folder is made
+        load_aircraft(ac, [DEFAULT_AIRCRAFT_DIR], Path("upsets"), "--aircraft")
+    out = prepare_out(args.out, ["summary.md", "summary.json", *(ac + "/" for ac in args.aircraft)])
     try:
         known = upsets.parse_known(args.known_failures, args.aircraft, args.count)
     except ValueError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
     n_failed, table = upsets.run_campaign(
-        args.aircraft, args.count, args.seed, Path(args.out), args.board_lib,
+        args.aircraft, args.count, args.seed, out, args.board_lib,
         altitude_m=args.altitude_m, duration_s=args.duration_s, floor_m=args.floor_m,
         jobs=args.jobs, plots=args.plots, known_failures=known,
         pitch_mode=args.pitch_mode)
     print(table)
-    print(f"wrote {Path(args.out).resolve()} (summary.md, summary.json, one folder and "
+    print(f"wrote {out.resolve()} (summary.md, summary.json, one folder and "
           "scenario file per upset)")
     return 0 if n_failed == 0 else 1
+
+
+class _HelpFormatter(argparse.HelpFormatter):
+    """Wraps descriptions as usual but keeps the exit-status table's lines."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        if text.startswith("exit status:"):
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+
+# every parser: the same exit-status table after the options
+_HELP: dict[str, Any] = {"epilog": EXIT_STATUS, "formatter_class": _HelpFormatter}
 
 
 def _add_upsets_parser(sub: Any) -> None:
     from helical_sil import upsets
     u = sub.add_parser(
-        "upsets", help="upset-recovery campaign: random attitudes, recover to level flight",
+        "upsets", **_HELP, help="upset-recovery campaign: random attitudes, recover to level flight",
         description="Fly COUNT seeded random upsets per aircraft (any bank, pitch +-80 deg, "
                     "inverted, airspeed from near the stall to a little above cruise, body "
                     "rates up to "
@@ -277,17 +397,17 @@ def _add_upsets_parser(sub: Any) -> None:
 
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
-        prog="python -m helical_sil",
+        prog="python -m helical_sil", **_HELP,
         description="Software-in-the-loop: the helical-turn C controller (host board "
                     "library) flies JSBSim aircraft through TOML scenarios.")
     ap.add_argument("--board-lib", default=None,
                     help="path of libhelical_sil_board.so (default: $HT_SIL_BOARD_LIB or "
                          "build/host/boards/sil/)")
     sub = ap.add_subparsers(dest="cmd", required=True)
-    r = sub.add_parser("run", help="fly one scenario",
+    r = sub.add_parser("run", help="fly one scenario", **_HELP,
                        description="Fly one scenario; write telemetry.csv (control rate), "
-                                   "metrics.json and PNG plots to --out. Exit 1 if a pass "
-                                   "criterion fails, 2 on a bad scenario file.")
+                                   "metrics.json and PNG plots to --out (created if "
+                                   "needed; checked before the flight).")
     r.add_argument("scenario", help="scenario TOML file")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
@@ -300,10 +420,12 @@ def build_parser() -> argparse.ArgumentParser:
                         "build/stm32f4/boards/stm32f4/ht_stm32f4_hil.elf)")
     # --- end PIL ---
     r.set_defaults(func=cmd_run)
-    b = sub.add_parser("batch", help="fly every scenario of a directory",
+    b = sub.add_parser("batch", help="fly every scenario of a directory", **_HELP,
                        description="Fly every *.toml of a directory (not its sub-folders), "
                                    "one output folder per scenario, with a progress bar and a "
-                                   "summary table (also summary.md, summary.json).")
+                                   "summary table (also summary.md, summary.json). Every "
+                                   "file is loaded before the first flight: one bad file "
+                                   "is exit 2 and nothing is flown.")
     b.add_argument("directory", help="directory of scenario TOML files")
     b.add_argument("--out", required=True, help="output directory")
     b.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
@@ -312,7 +434,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="fly every scenario once per seed (instead of its own seed); "
                         "outputs NAME_seedN")
     b.set_defaults(func=cmd_batch)
-    c = sub.add_parser("compare", help="metrics of runs side by side",
+    c = sub.add_parser("compare", help="metrics of runs side by side", **_HELP,
                        description="Print, per segment label of the first run, the metrics of "
                                    "two or more run output folders side by side (for example "
                                    "feed-forward on and off, or the two pitch methods).")
@@ -324,12 +446,22 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The exit status of EXIT_STATUS (argparse itself exits 2 on bad usage, 0
+    after --help)."""
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args))
-    except ScenarioError as e:
+    except (ScenarioError, UsageError) as e:
         print(f"error: {e}", file=sys.stderr)
-        return 2
+        return EXIT_INPUT
     except (BoardError, SimError) as e:
         print(f"error: {e}", file=sys.stderr)
-        return 3
+        return EXIT_RUNTIME
+    except OSError as e:  # inputs and --out were checked: the system failed (disk full ...)
+        print(f"error: {e}", file=sys.stderr)
+        return EXIT_RUNTIME
+    except Exception:  # a bug: keep exit 1 for "a criterion failed"
+        traceback.print_exc()
+        print("error: internal error of helical_sil (a bug; the traceback is above)",
+              file=sys.stderr)
+        return EXIT_BUG

@@ -1,5 +1,11 @@
 """PNG plots of a run: attitude, turn rate vs command, altitude, surfaces,
-ground track."""
+ground track.
+
+The number of artists does not grow with the number of commands: segment
+boundaries are one LineCollection per axis (and left out beyond
+MAX_SEGMENT_MARKS, where they would be a grey band), and the ground track's
+scatter is decimated to MAX_SCATTER_POINTS. A 10 000-command scenario once
+made 100 000 axvline artists (61 s, 709 MB of plotting)."""
 
 from __future__ import annotations
 
@@ -14,6 +20,15 @@ import numpy as np  # noqa: E402
 
 from helical_sil.sim import RunResult  # noqa: E402
 
+PLOT_FILES = ("attitude.png", "turn_rate.png", "altitude.png", "surfaces.png",
+              "ground_track.png")
+# More boundaries than this in a plot about 800 pixels wide would be closer
+# than 4 pixels apart: they are left out and a note says how many there are.
+MAX_SEGMENT_MARKS = 200
+# The ground track colours every point by altitude; beyond this many points
+# (1000 s at 40 Hz) every k-th point is drawn, which a 6-inch plot cannot tell.
+MAX_SCATTER_POINTS = 40000
+
 
 def _break_wraps(values: np.ndarray) -> np.ndarray:
     """An angle in degrees with NaN where it wraps (a jump over 180 deg), so
@@ -26,33 +41,71 @@ def _break_wraps(values: np.ndarray) -> np.ndarray:
 
 
 def _marks(ax: plt.Axes, res: RunResult) -> None:
-    for s in res.segments[1:]:
-        ax.axvline(s.t0, color="0.7", lw=0.8, ls=":")
+    """The segment boundaries: one artist, however many segments."""
+    ts = [s.t0 for s in res.segments[1:]]
+    if not ts:
+        return
+    if len(ts) > MAX_SEGMENT_MARKS:
+        ax.text(0.99, 0.02, f"{len(ts) + 1} segments (boundaries not drawn)",
+                transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color="0.3",
+                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1})
+        return
+    ax.vlines(ts, 0.0, 1.0, transform=ax.get_xaxis_transform(), colors="0.7", lw=0.8,
+              linestyles=":")
+
+
+def _every(n: int, limit: int) -> slice:
+    """A slice keeping at most limit of n points, evenly spaced."""
+    return slice(None, None, max(1, -(-n // limit)))
+
+
+def build_figures(res: RunResult) -> dict[str, plt.Figure]:
+    """The figures of write_plots, by file name (the caller closes them)."""
+    figs: dict[str, plt.Figure] = {}
+    try:
+        _build(res, figs)
+    except BaseException:
+        for f in figs.values():
+            plt.close(f)
+        raise
+    return figs
 
 
 def write_plots(res: RunResult, out: Path) -> list[Path]:
-    tel = res.telemetry
-    t = tel["t_s"]
     title = f"{res.scenario.name} ({res.scenario.aircraft.name})"
     files: list[Path] = []
+    figs = build_figures(res)
+    try:
+        for name, fig in figs.items():
+            fig.suptitle(title)
+            fig.tight_layout()
+            p = out / name
+            fig.savefig(p, dpi=90, metadata={"Software": None})
+            files.append(p)
+    finally:
+        for fig in figs.values():
+            plt.close(fig)
+    return files
+
+
+def _build(res: RunResult, figs: dict[str, plt.Figure]) -> None:
+    tel = res.telemetry
+    t = tel["t_s"]
 
     def save(fig: plt.Figure, name: str) -> None:
-        fig.suptitle(title)
-        fig.tight_layout()
-        p = out / name
-        fig.savefig(p, dpi=90, metadata={"Software": None})
-        plt.close(fig)
-        files.append(p)
+        figs[name] = fig
 
-    fig, axs = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
-    for ax, k, lab in zip(axs, ("phi_deg", "theta_deg", "psi_deg"),
-                          ("bank φ (deg)", "pitch θ (deg)", "heading ψ (deg)")):
-        ax.plot(t, _break_wraps(tel[k]) if k != "theta_deg" else tel[k], lw=1)
+    # sideslip has its own panel: on the heading axis (0-360 deg) a few
+    # degrees of sideslip were a flat line at zero
+    fig, axs = plt.subplots(4, 1, figsize=(9, 8.5), sharex=True)
+    for ax, k, lab in zip(axs, ("phi_deg", "theta_deg", "psi_deg", "beta_deg"),
+                          ("bank φ (deg)", "pitch θ (deg)", "heading ψ (deg)",
+                           "sideslip β (deg)")):
+        ax.plot(t, _break_wraps(tel[k]) if k in ("phi_deg", "psi_deg") else tel[k], lw=1)
         ax.set_ylabel(lab)
         ax.grid(alpha=0.3)
         _marks(ax, res)
-    axs[2].plot(t, tel["beta_deg"], lw=0.8, label="sideslip β (deg)")
-    axs[2].legend(loc="upper right")
+    axs[3].axhline(0.0, color="0.5", lw=0.6)
     axs[-1].set_xlabel("t (s)")
     save(fig, "attitude.png")
 
@@ -99,7 +152,9 @@ def write_plots(res: RunResult, out: Path) -> list[Path]:
     save(fig, "surfaces.png")
 
     fig, ax = plt.subplots(figsize=(6, 6))
-    sc = ax.scatter(tel["east_m"], tel["north_m"], c=tel["altitude_m"], s=2, cmap="viridis")
+    dec = _every(len(t), MAX_SCATTER_POINTS)
+    sc = ax.scatter(tel["east_m"][dec], tel["north_m"][dec], c=tel["altitude_m"][dec], s=2,
+                    cmap="viridis")
     ax.plot(tel["east_m"][:1], tel["north_m"][:1], "k^", label="start")
     mc = res.scenario.modes
     if mc is not None and mc.waypoints:
@@ -126,6 +181,5 @@ def write_plots(res: RunResult, out: Path) -> list[Path]:
     ax.grid(alpha=0.3)
     ax.legend(loc="best")
     save(fig, "ground_track.png")
-    return files
 
 

@@ -7,6 +7,8 @@ the file. The schema is documented in sil/README.md.
 from __future__ import annotations
 
 import math
+import re
+import reprlib
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,6 +48,43 @@ GAIN_DEFAULTS: dict[str, float] = {
     "spd_kp": 0.1, "spd_ki": 0.02, "spd_kff_pitch": 1.0, "spd_max_integral": 0.5,
     "throttle_min": 0.0, "throttle_max": 1.0,
 }
+
+# The range of every gain key, in the file's units: the ONE place a gain's
+# bound is written in Python (_gains checks it, the cross-field messages quote
+# it). They are the board's checks (sil_board_init, ht_init,
+# ht_alt_hold_check, ht_speed_hold_check), so a file the loader accepts is not
+# refused by the board later.
+_GAIN_0_64 = (0.0, 64.0)  # ht_params.c / holds.c: gains in [0, 64]
+GAIN_BOUNDS: dict[str, tuple[float, float]] = {
+    **{k: _GAIN_0_64 for k in LAW_PARAMS if k.startswith(("kp_", "kff_", "kd_"))},
+    "v_ref": (1.0, 327.0), "v_min": (1.0, 327.0),  # cm/s in int16, v_min >= 1 m/s
+    "schedule": (0.0, 1.0),
+    "max_tilt": (0.01, 8.0),                      # > 0 and <= 8 (82.9 deg of bank)
+    "alt_kp": _GAIN_0_64, "alt_ki": _GAIN_0_64, "alt_kd": _GAIN_0_64, "alt_kv": _GAIN_0_64,
+    "alt_max_pitch": (0.001, 4.0),                # the hold needs a ceiling > 0
+    "alt_max_integral": (0.0, 4.0),
+    "alt_max_error_m": (1.0, 10000.0), "alt_integral_band_m": (1.0, 10000.0),
+    "alt_integral_upright": (-4.0, 4.0), "alt_integral_inverted": (-4.0, 4.0),
+    "alt_protect_m_s": (0.0, 327.0), "alt_protect_valid_m_s": (0.0, 327.0),
+    "alt_protect_tau_s": (0.0, 60.0),
+    "spd_kp": _GAIN_0_64, "spd_ki": _GAIN_0_64, "spd_kff_pitch": _GAIN_0_64,
+    "spd_max_integral": (0.0, 1.0),
+    "throttle_min": (0.0, 1.0), "throttle_max": (0.0, 1.0), "throttle_trim": (0.0, 1.0),
+}
+# Pairs the board requires in order (low <= high). Checked on the merged gains
+# (defaults, aircraft file, scenario), so the error names both keys and the
+# file each value came from, instead of the board refusing one of them later.
+GAIN_ORDER = (("v_min", "v_ref"), ("throttle_min", "throttle_max"),
+              ("alt_integral_band_m", "alt_max_error_m"),
+              ("alt_protect_valid_m_s", "alt_protect_m_s"))
+
+# A scenario or aircraft file larger than this is refused before parsing: a
+# 10 000-command scenario is about 0.4 MB, and a device such as /dev/zero
+# would otherwise be read forever.
+MAX_FILE_BYTES = 16 * 1024 * 1024
+# An aircraft name is a file name inside the aircraft folders, nothing else:
+# no separators, no "..", no absolute path, no NUL, a bounded length.
+AIRCRAFT_NAME_RE = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.\-]{0,63}")
 
 TURBULENCE = ("none", "light", "moderate", "severe")
 PITCH_MODES = ("earth_frame", "tilt_cross")
@@ -178,6 +217,8 @@ class Aircraft:
     airspeed_m_s: float
     # defaults of the flight-mode tables ([modes], [nav], [fbw], [aoa]) for this airframe
     mode_tables: dict[str, dict[str, Any]] = field(default_factory=dict)
+    # the aircraft file that set each gain (absent: GAIN_DEFAULTS), for error messages
+    gain_sources: dict[str, Path] = field(default_factory=dict)
 
 
 # --- fault campaign (issue 7) ---
@@ -250,42 +291,60 @@ class Scenario:
 
 # --- typed getters ----------------------------------------------------------
 
+_SHOW = reprlib.Repr()
+_SHOW.maxstring, _SHOW.maxother, _SHOW.maxlevel = 60, 60, 3
+
+
+def _show(v: Any) -> str:
+    """A value for an error message: bounded in length and nesting depth (a
+    deeply nested array must not blow up the message, or repr's recursion)."""
+    return _SHOW.repr(v)
+
+
+def _key(k: str) -> str:
+    """A key for an error message, printable and bounded (keys come from the file)."""
+    return k if k.isprintable() and len(k) <= 80 else _show(k)
+
+
 def _where(src: Path, key: str) -> str:
-    return f"{src}: '{key}'"
+    return f"{src}: '{_key(key)}'"
 
 
 def _num(src: Path, key: str, v: Any, lo: float | None = None, hi: float | None = None) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise ScenarioError(f"{_where(src, key)}: expected a number, got {type(v).__name__} {v!r}")
-    x = float(v)
+        raise ScenarioError(f"{_where(src, key)}: expected a number, got {type(v).__name__} {_show(v)}")
+    try:
+        x = float(v)
+    except OverflowError:  # an integer beyond double range
+        x = math.inf
     if not math.isfinite(x):
-        raise ScenarioError(f"{_where(src, key)}: must be finite, got {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: must be finite, got {_show(v)}")
     if lo is not None and x < lo:
-        raise ScenarioError(f"{_where(src, key)}: must be >= {lo}, got {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: must be >= {lo}, got {_show(v)}")
     if hi is not None and x > hi:
-        raise ScenarioError(f"{_where(src, key)}: must be <= {hi}, got {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: must be <= {hi}, got {_show(v)}")
     return x
 
 
 def _int(src: Path, key: str, v: Any, lo: int | None = None, hi: int | None = None) -> int:
     if isinstance(v, bool) or not isinstance(v, int):
-        raise ScenarioError(f"{_where(src, key)}: expected an integer, got {type(v).__name__} {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: expected an integer, got {type(v).__name__} {_show(v)}")
     if (lo is not None and v < lo) or (hi is not None and v > hi):
-        raise ScenarioError(f"{_where(src, key)}: must be in [{lo}, {hi}], got {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: must be in [{lo}, {hi}], got {_show(v)}")
     return v
 
 
 def _bool(src: Path, key: str, v: Any) -> bool:
     if not isinstance(v, bool):
-        raise ScenarioError(f"{_where(src, key)}: expected true or false, got {type(v).__name__} {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: expected true or false, got {type(v).__name__} {_show(v)}")
     return v
 
 
 def _str(src: Path, key: str, v: Any, choices: tuple[str, ...] | None = None) -> str:
     if not isinstance(v, str):
-        raise ScenarioError(f"{_where(src, key)}: expected a string, got {type(v).__name__} {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: expected a string, got {type(v).__name__} {_show(v)}")
     if choices is not None and v not in choices:
-        raise ScenarioError(f"{_where(src, key)}: must be one of {', '.join(choices)}; got {v!r}")
+        raise ScenarioError(f"{_where(src, key)}: must be one of {', '.join(choices)}; got {_show(v)}")
     return v
 
 
@@ -318,18 +377,47 @@ def _timeline_entry(src: Path, pre: str, raw: Any, keys: Any, duration: float, l
         raise ScenarioError(f"{_where(src, pre + '.t_s')}: times must not decrease ({t} < {last_t})")
     label = _str(src, pre + ".label", c.get("label", default_label))
     if label in labels or label == "run":
-        raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {label!r}")
+        raise ScenarioError(f"{_where(src, pre + '.label')}: duplicate or reserved label {_show(label)}")
     labels.add(label)
     return c, t, label
 
-def _load_toml(path: Path) -> dict[str, Any]:
+def _read_bytes(path: Path) -> bytes:
+    """The file's bytes; a missing, unreadable, special or huge file is a
+    ScenarioError naming it."""
     try:
+        if path.is_dir():
+            raise ScenarioError(f"{path}: is a directory, not a TOML file")
+        if not path.exists():
+            raise ScenarioError(f"{path}: no such file")
+        if not path.is_file():
+            raise ScenarioError(f"{path}: not a regular file (a device, socket or pipe)")
         with path.open("rb") as f:
-            return tomllib.load(f)
-    except FileNotFoundError:
-        raise ScenarioError(f"{path}: no such file") from None
+            data = f.read(MAX_FILE_BYTES + 1)
+    except ScenarioError:
+        raise
+    except OSError as e:  # permission denied, name too long, I/O error ...
+        raise ScenarioError(f"{path}: cannot read: {e.strerror or e}") from None
+    except ValueError as e:  # a NUL in the path
+        raise ScenarioError(f"{_show(str(path))}: not a usable path: {e}") from None
+    if len(data) > MAX_FILE_BYTES:
+        raise ScenarioError(f"{path}: larger than {MAX_FILE_BYTES} bytes; not a scenario file")
+    return data
+
+
+def _load_toml(path: Path) -> dict[str, Any]:
+    data = _read_bytes(path)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        raise ScenarioError(f"{path}: not UTF-8 text (byte 0x{data[e.start]:02x} on line {line}); "
+                            "TOML files are UTF-8") from None
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ScenarioError(f"{path}: not valid TOML: {e}") from None
+    except RecursionError:  # tomllib parses nested arrays and inline tables recursively
+        raise ScenarioError(f"{path}: arrays or inline tables nested too deeply to parse") from None
 
 
 def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
@@ -339,48 +427,56 @@ def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
         key = f"{prefix}.{k}"
         if k == "schedule":
             out[k] = 1.0 if (_bool(src, key, v) if isinstance(v, bool) else _int(src, key, v, 0, 1)) else 0.0
-        elif k.startswith(("kp_", "kff_", "kd_")):
-            out[k] = _num(src, key, v, 0.0, 64.0)
-        elif k in ("v_ref", "v_min"):
-            out[k] = _num(src, key, v, 1.0, 327.0)
-        elif k in ("alt_protect_m_s", "alt_protect_valid_m_s"):
-            out[k] = _num(src, key, v, 0.0, 327.0)
-        elif k == "alt_protect_tau_s":
-            out[k] = _num(src, key, v, 0.0, 60.0)
-        elif k == "max_tilt":
-            out[k] = _num(src, key, v, 0.01, 8.0)
-        elif k in ("throttle_min", "throttle_max", "throttle_trim", "spd_max_integral"):
-            out[k] = _num(src, key, v, 0.0, 1.0)
-        elif k in ("alt_integral_upright", "alt_integral_inverted"):
-            out[k] = _num(src, key, v, -4.0, 4.0)
-        elif k in ("alt_max_pitch", "alt_max_integral"):
-            out[k] = _num(src, key, v, 0.0, 4.0)
-        elif k in ("alt_max_error_m", "alt_integral_band_m"):
-            out[k] = _num(src, key, v, 1.0, 10000.0)
         else:
-            out[k] = _num(src, key, v, 0.0, 64.0)
+            lo, hi = GAIN_BOUNDS[k]
+            out[k] = _num(src, key, v, lo, hi)
     return out
+
+
+def _check_gain_order(src: Path, gains: dict[str, float], sources: dict[str, Path]) -> None:
+    """GAIN_ORDER on the merged gains. sources: the file that set each key
+    (absent: the default)."""
+    def origin(k: str) -> str:
+        f = sources.get(k)
+        return "default" if f is None else ("this file" if f == src else f"set in {f}")
+
+    for lo_k, hi_k in GAIN_ORDER:
+        if lo_k in gains and hi_k in gains and gains[lo_k] > gains[hi_k]:
+            (a, b), (c, d) = GAIN_BOUNDS[lo_k], GAIN_BOUNDS[hi_k]
+            raise ScenarioError(
+                f"{_where(src, 'gains.' + lo_k)} = {gains[lo_k]:g} ({origin(lo_k)}) must not "
+                f"exceed 'gains.{hi_k}' = {gains[hi_k]:g} ({origin(hi_k)}); bounds: "
+                f"{lo_k} in [{a:g}, {b:g}], {hi_k} in [{c:g}, {d:g}], {lo_k} <= {hi_k}")
 
 
 # --- aircraft -----------------------------------------------------------------
 
 def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "aircraft") -> Aircraft:
-    """Find <name>.toml in the search dirs (the scenario's aircraft/ folder first)."""
+    """Find <name>.toml in the search dirs (the scenario's aircraft/ folder first).
+    The name is a plain file name (AIRCRAFT_NAME_RE): it cannot leave the folders."""
+    known = sorted({q.stem for d in search_dirs if d.is_dir() for q in d.glob("*.toml")})
+    if not AIRCRAFT_NAME_RE.fullmatch(name):
+        raise ScenarioError(
+            f"{_where(src, key)}: not an aircraft name: {_show(name)} (a name is up to 64 "
+            "letters, digits, '_', '-', '.', starting with a letter or digit, of a file "
+            f"<name>.toml in the aircraft folders; known: {', '.join(known) or 'none'})")
     for d in search_dirs:
         p = d / f"{name}.toml"
         if p.is_file():
             break
     else:
-        known = sorted({q.stem for d in search_dirs if d.is_dir() for q in d.glob("*.toml")})
         raise ScenarioError(
-            f"{_where(src, key)}: unknown aircraft {name!r} (known: {', '.join(known) or 'none'})")
+            f"{_where(src, key)}: unknown aircraft {_show(name)} (known: {', '.join(known) or 'none'})")
     doc = _load_toml(p)
     _check_keys(p, "", doc, ("model", "description", "gains", "initial", "modes", "nav", "fbw",
                              "aoa"))
     model = _str(p, "model", doc.get("model", name))
     desc = _str(p, "description", doc.get("description", ""))
     gains = dict(GAIN_DEFAULTS)
-    gains.update(_gains(p, "gains", _table(p, "gains", doc.get("gains", {}))))
+    own = _gains(p, "gains", _table(p, "gains", doc.get("gains", {})))
+    gains.update(own)
+    sources = {k: p for k in own}
+    _check_gain_order(p, gains, sources)  # an aircraft file flies on its own
     init = _table(p, "initial", doc.get("initial", {}))
     _check_keys(p, "initial", init, ("altitude_m", "airspeed_m_s"))
     alt = _num(p, "initial.altitude_m", init.get("altitude_m", 1500.0), 10.0, 20000.0)
@@ -389,7 +485,7 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
     # parse once here so a bad aircraft file names its own key
     _parse_mode_tables(p, tables, ModesConfig())
     return Aircraft(name=name, model=model, description=desc, gains=gains, altitude_m=alt,
-                    airspeed_m_s=spd, mode_tables=tables)
+                    airspeed_m_s=spd, mode_tables=tables, gain_sources=sources)
 
 
 def _parse_mode_tables(src: Path, tables: dict[str, dict[str, Any]], mc: ModesConfig) -> None:
@@ -592,7 +688,9 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     init = _table(src, "initial", doc.get("initial", {}))
     _check_keys(src, "initial", init, ("altitude_m", "airspeed_m_s", "heading_deg", "trim"))
     gains = dict(ac.gains)
-    gains.update(_gains(src, "gains", _table(src, "gains", doc.get("gains", {}))))
+    own = _gains(src, "gains", _table(src, "gains", doc.get("gains", {})))
+    gains.update(own)
+    _check_gain_order(src, gains, {**ac.gain_sources, **{k: src for k in own}})
 
     sc = Scenario(
         path=src, name=src.stem, description=_str(src, "description", doc.get("description", "")),
@@ -723,12 +821,15 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
                                 "metrics.climb_capability_m_s")
         if seg != "run" and seg not in labels:
             raise ScenarioError(
-                f"{_where(src, pre + '.segment')}: no command has label {seg!r} "
+                f"{_where(src, pre + '.segment')}: no command has label {_show(seg)} "
                 f"(labels: {', '.join(sorted(labels)) or 'none'}; or 'run')")
         if "max" not in c and "min" not in c:
             raise ScenarioError(f"{_where(src, pre)}: give max and/or min")
-        sc.criteria.append(PassCriterion(
-            metric=metric, segment=seg,
-            max=_num(src, pre + ".max", c["max"]) if "max" in c else None,
-            min=_num(src, pre + ".min", c["min"]) if "min" in c else None))
+        crit_max = _num(src, pre + ".max", c["max"]) if "max" in c else None
+        crit_min = _num(src, pre + ".min", c["min"]) if "min" in c else None
+        if crit_min is not None and crit_max is not None and crit_min > crit_max:
+            raise ScenarioError(
+                f"{_where(src, pre + '.min')} = {crit_min:g} must not exceed '{pre}.max' = "
+                f"{crit_max:g}: no value can pass")
+        sc.criteria.append(PassCriterion(metric=metric, segment=seg, max=crit_max, min=crit_min))
     return sc
