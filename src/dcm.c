@@ -305,7 +305,12 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
             const int32_t speed = qi_add_sat32(qi_mul32(vn, cn, 28u), qi_mul32(ve, ce, 28u));
             if (speed > (int32_t)d->p.gps_min_speed_cm_s) {
                 *flags |= (uint16_t)HT_DCM_F_YAW_AIDED;
-                return yaw_between(nn, ne, cn, ce);
+                /* scaled by the nose's horizontal length (cos pitch): the
+                 * course says nothing about the heading of a vertical nose,
+                 * and its direction is ill-conditioned there */
+                const int32_t nh_q30 = qi_add_sat32(qi_mul32(r[0][1], nn, 28u),
+                                                    qi_mul32(r[1][1], ne, 28u));
+                return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
     }

@@ -23,14 +23,14 @@
 
 /*
  * atan2(y, x) as a binary angle, for any int32 pair (the format cancels);
- * (0, 0) gives 0. Within 4e-9 rad of the exact angle (the tests sweep it).
+ * (0, 0) gives 0. Within 4e-8 rad of the exact angle (test_dcm_api sweeps it).
  * If mag_k is not NULL it receives HT_CORDIC_GAIN * sqrt(x^2 + y^2) in the
- * inputs' format, saturated to INT32_MAX (the caller scales the other
+ * inputs' format within 1e-6 relative, saturated to INT32_MAX (the caller scales the other
  * operand by the gain instead of dividing this one).
  */
 int32_t ht_dcm_atan2_bam(int32_t y, int32_t x, int32_t *mag_k);
 
-/* cos and sin of a binary angle in Q30, within 4e-9 of the exact values. */
+/* cos and sin of a binary angle in Q30, within 3e-8 of the exact values. */
 void ht_dcm_sincos_q30(int32_t angle_bam, int32_t *cos_q30, int32_t *sin_q30);
 
 /* A binary angle in centidegrees rounded to nearest, (-18000, 18000]. */

@@ -18,15 +18,24 @@
  *   reads [0, 0, -1] g; a steady coordinated turn at bank phi reads
  *   [0, 0, -1/cos(phi)] g.
  *
- * Each IMU sample: R <- R (I + [w dt]x) with w = gyro - bias + correction,
- * then renormalization (the orthogonality error of rows 0 and 1 shared half
- * and half, row 2 = row 0 x row 1, each row scaled by (3 - |r|^2) / 2).
- * Drift correction: roll/pitch from the gravity reference (the specific force
- * minus the centripetal acceleration w x v, v along the fuselage from the
- * airspeed or, when the GPS has a fix, from its velocity), weighted down as
- * |f| leaves 1 g; yaw from the GPS course when the ground speed is above
- * gps_min_speed (or a magnetometer, when given). A PI loop turns the error
- * into a rate correction; its integral is the gyro-bias estimate, bounded.
+ * Each IMU sample: R <- R (I + [w dt]x + [w dt]x^2 / 2) with w = gyro - bias
+ * + correction (the second-order term keeps the step a rotation to O(dt^4):
+ * without it the row-wise renormalization turns the step's stretch into a
+ * rotation error of (w dt)^2 / 2 per sample, 1.5 degrees in one 5 rad/s
+ * roll), w dt clamped to 0.5 rad per axis and sample; then renormalization
+ * (the orthogonality error of rows 0 and 1 shared half and half, row 2 =
+ * row 0 x row 1, each row scaled by (3 - |r|^2) / 2).
+ * Drift correction: roll/pitch from the gravity reference g = w x v - f (the
+ * specific force corrected by the centripetal acceleration, v along the
+ * fuselage from the airspeed or, when the GPS has a fix and centripetal is
+ * AUTO, R^T times its velocity), weighted down as |g| leaves 1 g (|g| = |f|
+ * without compensation; with it a coordinated turn keeps its full weight);
+ * yaw from the GPS course when the ground speed is above gps_min_speed,
+ * scaled by the nose's horizontal length (cos pitch), else from a
+ * magnetometer when given; beyond 90 degrees of yaw error the pull stays at
+ * its maximum. The yaw error acts about the earth vertical. A PI loop turns
+ * the error into a rate correction; its integral is the gyro-bias estimate,
+ * bounded. docs/estimator.md has the formats, the precision and the figures.
  *
  * Integer only; no float, libm, malloc, recursion or global state: the
  * caller owns ht_dcm_t (read-only after init) and ht_dcm_state_t.
@@ -115,14 +124,18 @@ typedef struct {
 /* The slower aiding measurements, given with every sample (flags say what
  * is new or valid). */
 typedef struct {
-    uint8_t gps_fix;         /* nonzero: the velocity below is a valid 3D fix */
-    uint8_t gps_fresh;       /* nonzero: a new GPS solution arrived since the last sample */
-    int32_t vel_ned_cm_s[3]; /* GPS ground velocity, north, east, down */
-    uint8_t airspeed_valid;  /* nonzero: airspeed_cm_s is a live reading */
-    int16_t airspeed_cm_s;
+    uint8_t gps_fix;              /* nonzero: the velocity below is a valid 3D fix (the last
+                                     solution, held between GPS updates: used every sample) */
+    uint8_t gps_fresh;            /* nonzero: a new GPS solution arrived since the last sample
+                                     (informational: the estimator does not need it) */
+    int32_t vel_ned_cm_s[3];      /* GPS ground velocity, north, east, down; clamped to
+                                     +/-655.35 m/s for the centripetal term */
+    uint8_t airspeed_valid;       /* nonzero: airspeed_cm_s is a live reading */
+    int16_t airspeed_cm_s;        /* <= 0 is read as no airspeed */
     uint8_t mag_valid;            /* nonzero: mag is a fresh magnetometer reading */
     int16_t mag[3];               /* body axes, any scale (only the direction is used) */
-    int16_t mag_declination_cdeg; /* east-positive, added to the magnetic heading */
+    int16_t mag_declination_cdeg; /* east-positive, added to the magnetic heading
+                                     (read modulo 360 degrees) */
 } ht_dcm_aiding_t;
 
 /* Health flags (ht_dcm_state_t.flags, ht_dcm_output_t.flags). */
@@ -130,9 +143,11 @@ enum ht_dcm_flag {
     HT_DCM_F_ALIGNED = 1u << 0,         /* ht_dcm_align has run (or the first sample did) */
     HT_DCM_F_GYRO_SATURATED = 1u << 1,  /* this sample: a gyro axis at its full scale */
     HT_DCM_F_ACCEL_SATURATED = 1u << 2, /* this sample: an accelerometer axis at its full scale */
-    HT_DCM_F_ACCEL_IGNORED = 1u << 3,   /* this sample: |f| outside the band, no roll/pitch aid */
+    HT_DCM_F_ACCEL_IGNORED = 1u << 3,   /* this sample: |g| outside the band (or an
+                                           accelerometer axis saturated): no roll/pitch aid */
     HT_DCM_F_RENORM_FAILED = 1u << 4,   /* a row's norm left [0.5, 1.5]: R was reset from the
-                                           accelerometer (latched until ht_dcm_reset) */
+                                           accelerometer with the last heading (level when
+                                           |f| < 0.5 g); latched until ht_dcm_reset */
     HT_DCM_F_YAW_AIDED = 1u << 5,       /* this sample: yaw corrected from GPS course / mag */
     HT_DCM_F_BIAS_LIMITED = 1u << 6,    /* a bias component sits on its bound */
     HT_DCM_F_CF_GPS = 1u << 7           /* this sample's centripetal term used GPS velocity */
@@ -147,20 +162,27 @@ typedef struct {
     uint32_t samples;
 } ht_dcm_state_t;
 
-/* R = identity, zero bias, not aligned. */
+/* R = identity (level, nose east), zero bias, no flags: the next sample with
+ * |f| >= 0.5 g aligns roll and pitch from its accelerometer, heading north. */
 void ht_dcm_reset(ht_dcm_state_t *s);
 
 /*
  * Start-up alignment: roll and pitch from one (averaged) accelerometer
  * reading, any attitude (not level, inverted); yaw from heading_cdeg
  * (a GPS course or magnetometer heading in 0.01 deg, [0, 36000)), or 0 when
- * heading_valid is 0. Zero bias. Returns 0, or 1 when |accel| is below
- * 0.5 g (no gravity reference: R is left as it was).
+ * heading_valid is 0; heading_cdeg >= 36000 is read modulo 36000). The
+ * heading is the nose's azimuth, or the right wing's minus 90 degrees when
+ * the nose is within 7 degrees of vertical. Zero bias; sets ALIGNED, keeps a
+ * latched RENORM_FAILED. Returns 0; 1 when |accel| is below 0.5 g (no
+ * gravity reference: s is left as it was); 2 when d, s or accel_g is NULL
+ * or d is not initialised (nothing changed).
  */
 int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
                  uint8_t heading_valid, uint16_t heading_cdeg);
 
-/* One IMU sample. NULL or an uninitialised d: nothing happens. */
+/* One IMU sample. NULL d, s or imu, or an uninitialised d: nothing happens.
+ * aid may be NULL (no aiding). Gyro and accelerometer axes are clamped to
+ * their full scales (flagged). */
 void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *imu,
                    const ht_dcm_aiding_t *aid);
 
@@ -174,7 +196,9 @@ typedef struct {
     uint16_t flags;
 } ht_dcm_output_t;
 
-/* The estimate in the caller's formats. */
+/* The estimate in the caller's formats (Euler angles: roll = atan2(-R20, R22),
+ * pitch = atan2(-R21, |(R20, R22)|), yaw = atan2(R11, R01), each rounded to
+ * 0.01 degree). NULL s: *out is zeroed; NULL out: nothing. */
 void ht_dcm_output(const ht_dcm_state_t *s, ht_dcm_output_t *out);
 
 #ifdef __cplusplus

@@ -113,7 +113,7 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
         const double vn = a->vel_ned_cm_s[0], ve = a->vel_ned_cm_s[1];
         const double sp = hypot(vn, ve);
         if (sp > p->gps_min_speed_cm_s) {
-            return yaw_between(nn, ne, vn / sp, ve / sp);
+            return nl * yaw_between(nn, ne, vn / sp, ve / sp);
         }
     }
     if (a->mag_valid) {
