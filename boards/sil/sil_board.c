@@ -553,7 +553,7 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     const int n =
         (s->imu_count < 0) ? 0 : (s->imu_count > SIL_IMU_MAX ? SIL_IMU_MAX : s->imu_count);
     /* no sample: one call without one (the firmware counts the gap) */
-    const int calls = (n == 0) ? 1 : n;
+    const int calls = (n == 0) ? (int)b->cfg.control_divider : n;
     /* the slower sensors' values hold for the whole batch; their "fresh"
      * flags go with the last sample, the one taken now */
     slow_sensors(s, &in);

@@ -192,6 +192,8 @@ class Board:
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
         full = {**MODES_CONFIG_DEFAULTS, **ESTIMATOR_CONFIG_DEFAULTS, **config}
+        # the IMU at three samples per control step unless said (the SIL's 120 Hz at 40 Hz)
+        full.setdefault("imu_rate_hz", 3 * int(full.get("control_rate_hz", 40)))
         for name, _t in SilConfig._fields_:
             if name not in full:
                 raise BoardError(f"board config lacks '{name}'")
@@ -208,6 +210,7 @@ class Board:
         if lib.sil_board_init(self._state, ctypes.byref(cfg), err, len(err)) != 0:
             raise BoardError(f"the board refused parameter '{err.value.decode()}'")
         self._sensors = SilSensors()
+        self._sensors.use_truth = 1  # the truth fields fly unless a caller gives raw samples
         self._command = SilCommand()
         self._act = SilActuators()
         self._step = lib.sil_board_step
