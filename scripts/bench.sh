@@ -6,6 +6,7 @@
 #   scripts/bench.sh            full run (10 000 steps + edge cases, -O2 and -Os)
 #   scripts/bench.sh --quick    CI run (200 steps, -O2): fails only on breakage
 #   scripts/bench.sh --help     every option (bench/py/bench.py)
+#   scripts/bench.sh --dcm      the attitude estimator (bench/py/bench_dcm.py)
 #
 # Needs arm-none-eabi-gcc, gcc, python3 (venv) and, for the callgrind figure,
 # valgrind. Makes bench/.venv from bench/requirements.lock on first use
@@ -37,4 +38,8 @@ if [[ ! -x $venv/bin/python || ! -f $stamp || $(cat "$stamp") != "$want" ]]; the
     echo "$want" >"$stamp"
 fi
 
+if [[ ${1:-} == --dcm ]]; then # the estimator: bench/py/bench_dcm.py --help
+    shift
+    exec "$venv/bin/python" bench/py/bench_dcm.py "$@"
+fi
 exec "$venv/bin/python" bench/py/bench.py "$@"

@@ -34,7 +34,7 @@
 /* Alignment refuses a gravity reference below 0.5 g. */
 #define ALIGN_MIN_G_Q16 ((int32_t)32768)
 /* Flags that survive from one sample to the next. */
-#define FLAGS_KEPT ((uint16_t)(HT_DCM_F_ALIGNED | HT_DCM_F_RENORM_FAILED))
+#define FLAGS_KEPT ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
 
 static int32_t clamp32(int32_t x, int32_t lim)
 {
@@ -143,7 +143,8 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     if (d == NULL || s == NULL || accel_g == NULL || d->ready == 0u) {
         return 2;
     }
-    int32_t cd = (heading_valid != 0u) ? ((int32_t)heading_cdeg % 36000) : 0;
+    const uint32_t hd = (uint32_t)heading_cdeg % 36000u;
+    int32_t cd = (heading_valid != 0u) ? (int32_t)hd : 0;
     if (cd > 18000) {
         cd -= 36000;
     }
@@ -155,8 +156,8 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     }
     zero3(s->bias);
     zero3(s->omega_corr);
-    s->flags =
-        (uint16_t)((s->flags & (uint16_t)HT_DCM_F_RENORM_FAILED) | (uint16_t)HT_DCM_F_ALIGNED);
+    const uint32_t kept = (uint32_t)s->flags & (uint32_t)HT_DCM_F_RENORM_FAILED;
+    s->flags = (uint16_t)(kept | (uint32_t)HT_DCM_F_ALIGNED);
     return 0;
 }
 
@@ -256,7 +257,7 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
         wt = accel_weight_q16(d, dot_sat(g, u, 28u));
     }
     if (wt == 0) {
-        return (uint16_t)(f | (uint16_t)HT_DCM_F_ACCEL_IGNORED);
+        return (uint16_t)((uint32_t)f | (uint32_t)HT_DCM_F_ACCEL_IGNORED);
     }
     int32_t dm[3];
     for (unsigned i = 0u; i < 3u; i++) {
@@ -308,8 +309,8 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
                 /* scaled by the nose's horizontal length (cos pitch): the
                  * course says nothing about the heading of a vertical nose,
                  * and its direction is ill-conditioned there */
-                const int32_t nh_q30 = qi_add_sat32(qi_mul32(r[0][1], nn, 28u),
-                                                    qi_mul32(r[1][1], ne, 28u));
+                const int32_t nh_q30 =
+                    qi_add_sat32(qi_mul32(r[0][1], nn, 28u), qi_mul32(r[1][1], ne, 28u));
                 return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
@@ -462,8 +463,8 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     const ht_dcm_aiding_t *a = (aid != NULL) ? aid : &no_aiding;
     q16_t gyro[3];
     q16_t acc[3];
-    const uint16_t kept = (uint16_t)(s->flags & FLAGS_KEPT);
-    const uint16_t sample_flags = clamp_sample(d, imu, gyro, acc);
+    const uint32_t sample_flags = clamp_sample(d, imu, gyro, acc);
+    const uint32_t kept = (uint32_t)s->flags & FLAGS_KEPT;
     uint16_t flags = (uint16_t)(kept | sample_flags);
     if ((flags & (uint16_t)HT_DCM_F_ALIGNED) == 0u) {
         /* the first usable sample aligns roll and pitch (heading north) */

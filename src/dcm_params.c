@@ -34,18 +34,13 @@ void ht_dcm_params_default(ht_dcm_params_t *p)
         return;
     }
     p->imu_rate_hz = 200u;
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->kp_rollpitch = Q16_FROM_REAL(0.2);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->ki_rollpitch = Q16_FROM_REAL(0.002);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->kp_yaw = Q16_FROM_REAL(0.5);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->ki_yaw = Q16_FROM_REAL(0.005);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->gyro_bias_max_rad_s = Q16_FROM_REAL(0.1);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    p->gyro_limit_rad_s = Q16_FROM_REAL(34.9);
+    /* Q16 of 0.2, 0.002, 0.5, 0.005, 0.1 and 34.9 (2000 deg/s), rounded */
+    p->kp_rollpitch = 13107;
+    p->ki_rollpitch = 131;
+    p->kp_yaw = 32768;
+    p->ki_yaw = 328;
+    p->gyro_bias_max_rad_s = 6554;
+    p->gyro_limit_rad_s = 2287206;
     p->accel_limit_g = 16 * Q16_ONE;
     p->accel_band_g = Q16_ONE / 2;
     p->gps_min_speed_cm_s = 300;
@@ -119,8 +114,8 @@ int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
     const uint32_t rate = p->imu_rate_hz;
     const uint32_t dt_u = ((uint32_t)1u << 30) / rate;
     const uint32_t rem = ((uint32_t)1u << 30) - (dt_u * rate);
-    const uint32_t round_up = ((2u * rem) >= rate) ? 1u : 0u;
-    c.dt_q30 = (int32_t)(dt_u + round_up);
+    const uint32_t dt_r = dt_u + (((2u * rem) >= rate) ? 1u : 0u);
+    c.dt_q30 = (int32_t)dt_r;
     /* gain * dt: Q16 * Q30 = Q46; kp*dt <= 16 * 0.02 = 0.32 fits Q32, ki*dt <=
      * 4 * 0.02 = 0.08 fits Q34. Both keep >= 20 significant bits at the
      * defaults, so the integrator sees increments far below a Q30 LSB. */
@@ -132,7 +127,8 @@ int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
     /* 1 / band as a mantissa and exponent: the weight is (band - |dev|) / band */
     unsigned e = 0u;
     c.inv_band_q30 = q_recip_q30(p->accel_band_g, &e);
-    c.inv_band_shift = (uint8_t)(14u + e); /* Q16 * Q30 * 2^-(30+e) * 2^16 */
+    const unsigned shift = 14u + e; /* Q16 * Q30 * 2^-(30+e) * 2^16; e <= 18 */
+    c.inv_band_shift = (uint8_t)shift;
     c.ready = 1u;
     *d = c;
     return 0;

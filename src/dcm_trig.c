@@ -38,10 +38,10 @@ int32_t ht_dcm_atan2_bam(int32_t y, int32_t x, int32_t *mag_k)
     /* top bit to bit 28: lz == 3 */
     const unsigned down = (lz < 3u) ? (3u - lz) : 0u;
     const unsigned up = (lz > 3u) ? (lz - 3u) : 0u;
-    const uint32_t ux = (ax >> down) << up;
-    const uint32_t uy = (ay >> down) << up;
-    const int32_t sx = (int32_t)ux;
-    const int32_t sy = (int32_t)uy;
+    const uint32_t sxu = (ax >> down) << up;
+    const uint32_t syu = (ay >> down) << up;
+    const int32_t sx = (int32_t)sxu;
+    const int32_t sy = (int32_t)syu;
     int32_t xs = (x < 0) ? -sx : sx;
     int32_t ys = (y < 0) ? -sy : sy;
     int32_t z = 0;
@@ -67,17 +67,13 @@ int32_t ht_dcm_atan2_bam(int32_t y, int32_t x, int32_t *mag_k)
         if (ys > 0) {
             xs += dy;
             ys -= dx;
-            {
-                const uint32_t zu = (uint32_t)z + (uint32_t)cordic_atan_bam[i];
-                z = (int32_t)zu;
-            }
+            const uint32_t zu = (uint32_t)z + (uint32_t)cordic_atan_bam[i];
+            z = (int32_t)zu;
         } else {
             xs -= dy;
             ys += dx;
-            {
-                const uint32_t zu = (uint32_t)z - (uint32_t)cordic_atan_bam[i];
-                z = (int32_t)zu;
-            }
+            const uint32_t zu = (uint32_t)z - (uint32_t)cordic_atan_bam[i];
+            z = (int32_t)zu;
         }
     }
     if (mag_k != NULL) {
@@ -102,10 +98,8 @@ void ht_dcm_sincos_q30(int32_t angle_bam, int32_t *cos_q30, int32_t *sin_q30)
     int32_t z = angle_bam;
     int neg = 0;
     if (z > HT_BAM_90 || z < -HT_BAM_90) {
-        {
-            const uint32_t zu = (uint32_t)z + 0x80000000u;
-            z = (int32_t)zu;
-        }
+        const uint32_t zu = (uint32_t)z + 0x80000000u;
+        z = (int32_t)zu;
         neg = 1;
     }
     /* start at 1/gain so that the result has unit length */
