@@ -29,6 +29,8 @@
 #define THREE_HALVES_Q30 ((int32_t)0x60000000) /* 3 * 2^29: (3 - n) / 2 in Q30 */
 /* Velocities are clamped to +/-655 m/s before any product. */
 #define V_MAX_CM_S 65535
+/* 2^16 / 980.665 (cm/s^2 per g) in Q16: cm/s^2 -> g in Q16 */
+#define CM_S2_TO_G_Q16_Q16 ((int32_t)4379707)
 /* (65536 / 980.665) * 2^24: cm/s in Q8 to g*s in Q16 with a shift of 32. */
 #define CM_S_Q8_TO_GS_Q16_Q24 ((int32_t)1121189833)
 /* Alignment refuses a gravity reference below 0.5 g. */
@@ -183,12 +185,41 @@ static uint16_t clamp_sample(const ht_dcm_t *d, const ht_imu_sample_t *imu, q16_
     return f;
 }
 
-/* The velocity for the centripetal term, body axes, cm/s in Q8 (0 when none). */
+/*
+ * The velocity through the air in body axes from the airspeed V: in the
+ * plane of symmetry (no sideslip), [0, vy, vz], its angle of attack from the
+ * climb rate c (GPS, 0 without a fix): v . R[2] = -c gives
+ * vz = (-c - V R[2][1]) / R[2][2], and vy = V - vz^2 / (2 V). Along the
+ * fuselage alone (vz = 0) a steep turn's angle of attack (10 deg at 60 deg of
+ * bank) is missed and w x v is 0.2 g off. |vz| is held to V/2, and 0 when the
+ * wings are near vertical (|R[2][2]| < 1/4) where the climb says nothing.
+ */
+static void air_velocity(const int32_t r[3][3], const ht_dcm_aiding_t *a, uint8_t use_gps,
+                         int32_t v_q8[3])
+{
+    const int32_t v = a->airspeed_cm_s; /* (0, 32767] */
+    const int32_t climb = (use_gps != 0u) ? -clamp32(a->vel_ned_cm_s[2], 32767) : 0;
+    const int32_t r22_q14 = qi_rshift_round(r[2][2], 16u);
+    int32_t vz = 0;
+    if (r22_q14 >= 4096 || r22_q14 <= -4096) {
+        const int32_t num = clamp32(-climb - qi_mul32(v, r[2][1], 30u), 65535);
+        vz = clamp32((num * 16384) / r22_q14, v / 2);
+    }
+    const int32_t vy = v - ((vz * vz) / (2 * v));
+    v_q8[0] = 0;
+    v_q8[1] = vy * 256;
+    v_q8[2] = vz * 256;
+}
+
+/* The velocity for the centripetal term, body axes, cm/s in Q8 (0 when none):
+ * the air velocity (airspeed and climb), else with CF_AUTO and a GPS fix the
+ * GPS ground velocity rotated into the body. */
 static uint16_t cf_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_dcm_aiding_t *a,
                             int32_t v_q8[3])
 {
     zero3(v_q8);
-    if (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) {
+    if (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u &&
+        (a->airspeed_valid == 0u || a->airspeed_cm_s <= 0)) {
         int32_t vn[3];
         for (unsigned i = 0u; i < 3u; i++) {
             vn[i] = clamp32(a->vel_ned_cm_s[i], V_MAX_CM_S);
@@ -205,9 +236,33 @@ static uint16_t cf_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_d
     }
     if (d->p.centripetal != (uint8_t)HT_DCM_CF_OFF && a->airspeed_valid != 0u &&
         a->airspeed_cm_s > 0) {
-        v_q8[1] = (int32_t)a->airspeed_cm_s * 256;
+        const uint8_t gps =
+            (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) ? 1u : 0u;
+        air_velocity(r, a, gps, v_q8);
+        return (gps != 0u) ? (uint16_t)HT_DCM_F_CF_GPS : 0u;
     }
     return 0u;
+}
+
+/*
+ * The acceleration along the fuselage from the airspeed's rate of change,
+ * g in Q16, low-passed over 32 samples (0.16 s at 200 Hz): the pitot's
+ * steps between its updates and its noise are smoothed, a turn entry's or a
+ * dive's speed change is kept. No valid airspeed: the term decays to 0.
+ */
+static void forward_acceleration(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_dcm_aiding_t *a)
+{
+    int32_t raw = 0;
+    if (a->airspeed_valid != 0u && s->speed_prev_valid != 0u) {
+        /* dv in cm/s per sample, clamped to +/-20 m/s (200 g at 1 kHz); times
+         * the rate and 2^16 / 980.665 cm/s^2 (66.83, Q16): at most 1.4e8 */
+        int32_t dv = (int32_t)a->airspeed_cm_s - (int32_t)s->speed_prev_cm_s;
+        dv = clamp32(dv, 2000);
+        raw = qi_mul32(dv * (int32_t)d->p.imu_rate_hz, CM_S2_TO_G_Q16_Q16, 16u);
+    }
+    s->accel_fwd_g = qi_add_sat32(s->accel_fwd_g, (raw - s->accel_fwd_g) / 32);
+    s->speed_prev_valid = (a->airspeed_valid != 0u) ? 1u : 0u;
+    s->speed_prev_cm_s = a->airspeed_cm_s;
 }
 
 /* The gravity reference's weight in Q16 for a magnitude in g (Q16). */
@@ -248,6 +303,11 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
     g[0] = qi_sub_sat32(qi_mul32(w[1], v_gs[2], 16u), qi_mul32(w[2], v_gs[1], 16u));
     g[1] = qi_sub_sat32(qi_mul32(w[2], v_gs[0], 16u), qi_mul32(w[0], v_gs[2], 16u));
     g[2] = qi_sub_sat32(qi_mul32(w[0], v_gs[1], 16u), qi_mul32(w[1], v_gs[0], 16u));
+    /* the acceleration along the path: the aircraft speeding up reads as a
+     * nose-up tilt of the apparent vertical (0.07 g is 4 degrees) */
+    if (d->p.centripetal != (uint8_t)HT_DCM_CF_OFF) {
+        g[1] = qi_add_sat32(g[1], s->accel_fwd_g);
+    }
     for (unsigned i = 0u; i < 3u; i++) {
         g[i] = qi_sub_sat32(g[i], acc[i]);
     }
@@ -476,6 +536,7 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     for (unsigned i = 0u; i < 3u; i++) {
         s->rate_rad_s[i] = qi_sub_sat32(gyro[i], qi_rshift_round(s->bias[i], 14u));
     }
+    forward_acceleration(d, s, a);
     int32_t e_rp[3];
     flags |= rollpitch_error(d, s, a, acc, flags, e_rp);
     const int32_t ey = yaw_error(d, s, a, &flags);

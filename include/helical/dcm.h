@@ -154,10 +154,13 @@ enum ht_dcm_flag {
 };
 
 typedef struct {
-    int32_t r[3][3];       /* the matrix, Q30 (2^30 = 1.0) */
-    int32_t bias[3];       /* integral of the PI loop = gyro-bias estimate, rad/s, Q30 */
-    int32_t omega_corr[3]; /* last proportional correction, rad/s, Q16 */
-    q16_t rate_rad_s[3];   /* last sample's gyro (clamped to its full scale) - bias, Q16 */
+    int32_t r[3][3];          /* the matrix, Q30 (2^30 = 1.0) */
+    int32_t bias[3];          /* integral of the PI loop = gyro-bias estimate, rad/s, Q30 */
+    int32_t omega_corr[3];    /* last proportional correction, rad/s, Q16 */
+    q16_t rate_rad_s[3];      /* last sample's gyro (clamped to its full scale) - bias, Q16 */
+    q16_t accel_fwd_g;        /* filtered rate of change of the airspeed, g, Q16 */
+    int16_t speed_prev_cm_s;  /* the airspeed of the previous sample ... */
+    uint8_t speed_prev_valid; /* ... when it was valid */
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;
