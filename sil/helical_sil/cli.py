@@ -74,6 +74,8 @@ SUMMARY_COLS = (
     ("sideslip_rms_deg", "β rms°", "{:.2f}"),
     ("max_altitude_loss_m", "h loss m", "{:.1f}"),
     ("surface_saturation_frac", "sat", "{:.2f}"),
+    ("attitude_source", "attitude", "{}"),
+    ("attitude_error_rms_deg", "att err°", "{:.2f}"),
     ("sim_speed_x_realtime", "×RT", "{:.0f}"),
     ("result", "result", "{}"),
 )
@@ -81,7 +83,7 @@ SUMMARY_COLS = (
 
 def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
             csv: bool = True, seed: int | None = None,
-            scenario: Scenario | None = None) -> dict[str, Any]:
+            scenario: Scenario | None = None, attitude: str | None = None) -> dict[str, Any]:
     """Fly one scenario and write its outputs; returns metrics.json's content.
     seed (fault campaign, issue 7): fly it with this seed instead of its own.
     scenario: the file already loaded (not loaded again)."""
@@ -91,6 +93,8 @@ def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
     sc = scenario if scenario is not None else load_scenario(path)
     if seed is not None:
         sc.seed, sc.name = seed, f"{sc.name}_seed{seed}"
+    if attitude is not None:  # --attitude: truth or estimate, whatever the file says
+        sc.attitude_source = attitude
     res = sim.run(sc, board_lib)
     out.mkdir(parents=True, exist_ok=True)
     m = met.run_metrics(res)
@@ -129,6 +133,8 @@ def _summary_row(m: dict[str, Any]) -> dict[str, str]:
         "max_altitude_loss_m": m["run"]["max_altitude_loss_m"],
         "surface_saturation_frac": m["run"]["surface_saturation_frac"],
         "sim_speed_x_realtime": m["run"]["sim_speed_x_realtime"],
+        "attitude_source": m["run"].get("attitude_source"),
+        "attitude_error_rms_deg": m["run"].get("attitude_error_rms_deg"),
     }
     for key, _h, fmt in SUMMARY_COLS[2:-1]:
         v = vals[key]
@@ -175,12 +181,12 @@ def cmd_run(args: argparse.Namespace) -> int:
         from helical_sil import pil
         with pil.as_sim_target(args.elf) as pil_runs:
             m = run_one(Path(args.scenario), out, args.board_lib,
-                        plots=not args.no_plots, scenario=sc)
+                        plots=not args.no_plots, scenario=sc, attitude=args.attitude)
         if pil.report(pil_runs[-1], out) != 0:
             m["passed"] = False
     else:
         m = run_one(Path(args.scenario), out, args.board_lib,
-                    plots=not args.no_plots, scenario=sc)
+                    plots=not args.no_plots, scenario=sc, attitude=args.attitude)
     # --- end PIL ---
     print(format_table([_summary_row(m)]))
     for c in m["pass_criteria"]:
@@ -224,8 +230,14 @@ def cmd_batch(args: argparse.Namespace) -> int:
     files = _batch_files(args)
     # --- fault campaign (issue 7): --seeds flies every scenario once per seed ---
     seeds: list[int | None] = list(args.seeds) if getattr(args, "seeds", None) else [None]
-    runs = [(f, sd, f.stem if sd is None else f"{f.stem}_seed{sd}") for f in files
-            for sd in seeds]
+    att = getattr(args, "attitude", "scenario")
+    # --attitude both: every scenario on JSBSim's truth and on the estimate, side by side
+    atts: list[str | None] = ["truth", "estimate"] if att == "both" else (
+        [None] if att == "scenario" else [att])
+    runs4 = [(f, sd, a, (f.stem if sd is None else f"{f.stem}_seed{sd}")
+              + ("" if att != "both" else f"_{a}")) for f in files for sd in seeds for a in atts]
+    runs = [(f, sd, n) for f, sd, _a, n in runs4]
+    run_att = {n: a for _f, _sd, a, n in runs4}
     out = prepare_out(args.out, ["summary.md", "summary.json", *(n + "/" for _f, _s, n in runs)])
     rows, results = [], {}
     t0 = time.perf_counter()
@@ -234,7 +246,8 @@ def cmd_batch(args: argparse.Namespace) -> int:
     for i, (f, sd, name) in enumerate(runs):
         _progress(i, len(files), name, t0)
         try:
-            m = run_one(f, out / name, args.board_lib, plots=not args.no_plots, seed=sd)
+            m = run_one(f, out / name, args.board_lib, plots=not args.no_plots, seed=sd,
+                        attitude=run_att[name])
         except (ScenarioError, SimError) as e:  # ScenarioError: the file changed meanwhile
             sys.stderr.write(f"\nerror: {e}\n")
             failed_run = True
@@ -411,6 +424,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("scenario", help="scenario TOML file")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    r.add_argument("--attitude", choices=("truth", "estimate"), default=None,
+                   help="fly on JSBSim's truth or the firmware's estimate, whatever the "
+                        "scenario's [attitude] source says")
     # --- PIL (issue 8) ---
     r.add_argument("--target", choices=("sil", "pil"), default="sil",
                    help="sil: the host board library (default); pil: the STM32F405 HIL "
@@ -429,6 +445,10 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("directory", help="directory of scenario TOML files")
     b.add_argument("--out", required=True, help="output directory")
     b.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    b.add_argument("--attitude", choices=("scenario", "truth", "estimate", "both"),
+                   default="scenario",
+                   help="what the law flies on: each file's [attitude] source (default), "
+                        "JSBSim's truth, the firmware's estimate, or both side by side")
     b.add_argument("--only", nargs="*", help="scenario names (file stems) to run")
     b.add_argument("--seeds", nargs="+", type=int, default=None,  # fault campaign (issue 7)
                    help="fly every scenario once per seed (instead of its own seed); "

@@ -301,6 +301,24 @@ def min_altitude_net_of_air(res: RunResult) -> dict[str, Any]:
     return {"min_altitude_net_of_air_m": _f(np.min(tel["altitude_m"] + u))}
 
 
+def estimator_metrics(tel: dict[str, np.ndarray], idx: np.ndarray) -> dict[str, Any]:
+    """The firmware estimator against JSBSim over the steps idx (whichever
+    attitude the law flew on): attitude_error_rms/max_deg (the angle between
+    the estimated and the true earth-down vectors), heading_error_max_deg, and
+    gyro_bias_error_deg_s (|estimated - true gyro bias| at the last step)."""
+    if idx.size == 0 or "attitude_error_deg" not in tel:
+        return {}
+    e = tel["attitude_error_deg"][idx]
+    k = idx[-1]
+    db = [tel[f"est_bias_{a}_deg_s"][k] - tel[f"true_bias_{a}_deg_s"][k] for a in "xyz"]
+    return {
+        "attitude_error_rms_deg": _f(np.sqrt(np.mean(e ** 2))),
+        "attitude_error_max_deg": _f(np.max(e)),
+        "heading_error_max_deg": _f(np.max(np.abs(tel["heading_error_deg"][idx]))),
+        "gyro_bias_error_deg_s": _f(math.sqrt(sum(d * d for d in db))),
+    }
+
+
 def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     tel = res.telemetry
     sc = res.scenario
@@ -315,6 +333,7 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
         out["mode"] = seg.mode
         out.update(nav_metrics(res, m))
     idx = np.nonzero(m)[0]
+    out.update(estimator_metrics(tel, idx))
     ts = t[idx] - seg.t0
     w = tel["turn_rate_deg_s"][idx]
     h = tel["altitude_m"][idx]
@@ -415,6 +434,8 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
         "sim_speed_x_realtime": _f(sim_s / res.wall_s) if res.wall_s > 0 else None,
         "wall_s": _f(res.wall_s),
     }
+    run["attitude_source"] = sc.attitude_source
+    run.update(estimator_metrics(tel, np.arange(h.size)))
     if sc.modes is None:
         run.update(recovery_metrics(res))  # fault campaign (issue 7)
         run.update(min_altitude_net_of_air(res))

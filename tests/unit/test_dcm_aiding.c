@@ -344,6 +344,84 @@ static void test_closed_loop_tracks_double_reference(void)
     TEST_ASSERT_TRUE(worst_bias < 1e-6);
 }
 
+/* Speeding up in level flight: the specific force leans forward by the
+ * acceleration (0.1 g reads as 5.7 degrees of nose-up), the airspeed rises
+ * with it. The compensation's rate-of-change term keeps the pitch; without
+ * compensation the estimate pitches up toward atan(0.1). 20 s at 200 Hz. */
+static double accelerating_pitch_error(uint8_t cf)
+{
+    prm.centripetal = cf;
+    dt_init(&dcm, &prm);
+    double r[3][3];
+    dcmr_from_euler(0, 0, 0, r);
+    dt_state_at(&st, r);
+    const double w[3] = {0, 0, 0};
+    const double f[3] = {0, 0.1, -1.0}; /* 0.1 g forward */
+    const ht_imu_sample_t imu = dt_imu(w, f);
+    double v = 1500.0; /* cm/s */
+    ht_dcm_output_t out;
+    for (int k = 0; k < 200 * 20; k++) {
+        ht_dcm_aiding_t aid = {0};
+        aid.airspeed_valid = 1u;
+        aid.airspeed_cm_s = (int16_t)lround(v);
+        ht_dcm_update(&dcm, &st, &imu, &aid);
+        v += 0.1 * 980.665 / 200.0;
+    }
+    ht_dcm_output(&st, &out);
+    return fabs(out.pitch_cdeg / 100.0);
+}
+
+static void test_forward_acceleration_is_compensated(void)
+{
+    const double with = accelerating_pitch_error((uint8_t)HT_DCM_CF_AIRSPEED);
+    setUp();
+    const double without = accelerating_pitch_error((uint8_t)HT_DCM_CF_OFF);
+    printf("  0.1 g forward for 20 s: pitch error %.3f deg compensated, %.2f without\n", with,
+           without);
+    TEST_ASSERT_TRUE(with < 0.3);
+    TEST_ASSERT_TRUE(without > 2.0);
+}
+
+/* A steady level turn at 60 deg of bank with the nose 5 deg up: the air
+ * velocity is horizontal and without sideslip, so in body axes it has an
+ * angle of attack of 10 deg. Its w x v is what the accelerometer sees; the
+ * compensation recovers that angle from the zero climb rate (along the
+ * fuselage alone it would be 0.2 g off). 60 s. */
+static void test_turn_angle_of_attack_from_the_climb_rate(void)
+{
+    prm.centripetal = (uint8_t)HT_DCM_CF_AIRSPEED;
+    dt_init(&dcm, &prm);
+    const double phi = 60.0 * DEG, theta = 5.0 * DEG, v = 60.0;
+    double r[3][3];
+    dcmr_from_euler(phi, theta, 0, r);
+    dt_state_at(&st, r);
+    /* coordinated: the air velocity in the plane of symmetry, V [0, cos a, sin a],
+     * and horizontal: v . R[2] = 0, so tan a = -R[2][1] / R[2][2] (10 deg here) */
+    const double alpha = atan2(-r[2][1], r[2][2]);
+    double vb[3] = {0, v * cos(alpha), v * sin(alpha)};
+    const double om = 9.80665 * tan(phi) / v;
+    const double w[3] = {om * r[2][0], om * r[2][1], om * r[2][2]};
+    double f[3];
+    f[0] = (w[1] * vb[2] - w[2] * vb[1]) / 9.80665 - r[2][0];
+    f[1] = (w[2] * vb[0] - w[0] * vb[2]) / 9.80665 - r[2][1];
+    f[2] = (w[0] * vb[1] - w[1] * vb[0]) / 9.80665 - r[2][2];
+    const ht_imu_sample_t imu = dt_imu(w, f);
+    ht_dcm_output_t out;
+    double worst = 0.0;
+    for (int k = 0; k < 200 * 60; k++) {
+        ht_dcm_aiding_t aid = {0};
+        aid.airspeed_valid = 1u;
+        aid.airspeed_cm_s = (int16_t)lround(v * 100.0);
+        ht_dcm_update(&dcm, &st, &imu, &aid);
+        ht_dcm_output(&st, &out);
+        const double e = fabs(out.roll_cdeg / 100.0 - 60.0) + fabs(out.pitch_cdeg / 100.0 - 5.0);
+        worst = e > worst ? e : worst;
+    }
+    printf("  60 deg turn, nose 5 deg up (alpha %.1f deg): worst roll + pitch error %.3f deg\n",
+           atan2(vb[2], vb[1]) / DEG, worst);
+    TEST_ASSERT_TRUE(worst < 0.3);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -353,5 +431,7 @@ int main(void)
     RUN_TEST(test_magnetometer_yaw_converges_with_declination);
     RUN_TEST(test_accel_weight_across_the_band);
     RUN_TEST(test_closed_loop_tracks_double_reference);
+    RUN_TEST(test_forward_acceleration_is_compensated);
+    RUN_TEST(test_turn_angle_of_attack_from_the_climb_rate);
     return UNITY_END();
 }
