@@ -151,3 +151,12 @@ def test_bad_configuration_is_named() -> None:
         GpsConfig(latency_s=-0.1)
     with pytest.raises(ValueError, match="gps: t_s must be finite"):
         SensorModel(SensorConfig(), seed=0).gps(LEVEL, math.inf)
+
+
+def test_a_late_caller_gets_fixes_labelled_with_its_own_time() -> None:
+    # called every 0.03 s: epoch 0.2 s is first seen at 0.21 s, with that state
+    out = _fly(SensorModel(_cfg(rate_hz=5.0, latency_s=0.1), seed=1), 1.0, dt=0.03)
+    fresh = [o for o in out if o.fresh]
+    assert fresh[1].t_valid_s == pytest.approx(0.21)
+    assert fresh[1].lat_deg == pytest.approx(_moving(0.21).lat_deg, abs=1e-12)
+    assert fresh[1].t_s == pytest.approx(0.33)  # first call at or after 0.31 s
