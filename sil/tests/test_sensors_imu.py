@@ -221,6 +221,9 @@ def test_imu_refuses_a_call_off_its_rate() -> None:
         m.imu(LEVEL, 0.005 + 1.0 / 120.0)
     with pytest.raises(ValueError, match="t_s must be finite"):
         m.imu(LEVEL, math.nan)
+    with pytest.raises(ValueError, match=r"imu: non-finite state: pqr_rad_s=\(nan"):
+        m.imu(state(pqr_rad_s=(math.nan, 0.0, 0.0)), 0.010)
+    m.imu(LEVEL, 0.010)  # a refused call does not advance the model
 
 
 def test_default_config_level_reading_is_close_to_one_g() -> None:
