@@ -134,15 +134,15 @@ class GpsConfig:
 
 @dataclass(frozen=True)
 class PitotConfig:
-    # MS4525DO-DS5AI001DP (+/-1 psi, 14 bits over 80 % of the span: 1.05 Pa per
-    # count): noise sigma about one count
-    noise_pa: float = 1.0
+    # MS4525DO-DS5AI005DP, the +/-5 psi part (the 1 psi one saturates at 106 m/s
+    # equivalent airspeed, where the T-37 cruises): 14 bits over 80 % of the span,
+    # 5.3 Pa per count, noise sigma about one count (0.05 m/s at 100 m/s)
+    noise_pa: float = 5.3
     # zero offset left after the power-up zeroing (the raw error band, +/-1 % FS,
     # is removed by it)
     offset_pa: float = 0.0
-    # full scale 1 psi: 106 m/s equivalent airspeed (the T-37 cruises at 102 m/s:
-    # raise it for fast aircraft)
-    range_pa: float = 1.0 * PSI_PA
+    # full scale 5 psi: 237 m/s equivalent airspeed
+    range_pa: float = 5.0 * PSI_PA
 
     def __post_init__(self) -> None:
         _check_nonneg(self, "noise_pa")

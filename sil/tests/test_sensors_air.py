@@ -43,7 +43,7 @@ def test_pitot_noise_is_in_pressure() -> None:
 
 
 def test_pitot_offset_low_speed_and_full_scale() -> None:
-    m = SensorModel(_cfg(pitot=PitotConfig(noise_pa=0.0, offset_pa=-5.0)), seed=0)
+    m = SensorModel(_cfg(pitot=PitotConfig(noise_pa=0.0, offset_pa=-5.0, range_pa=6894.757293168)), seed=0)
     # below the offset the pressure is negative: airspeed 0, not NaN
     slow = m.pitot(state(vt_m_s=2.0), 0.0)  # q = 2.1 Pa
     assert slow.diff_pressure_pa == pytest.approx(0.5 * LEVEL.rho_kg_m3 * 4.0 - 5.0)
@@ -109,7 +109,7 @@ def test_defaults_are_the_documented_values() -> None:
     assert c.imu.gyro.range_rad_s == pytest.approx(math.radians(2000.0))
     assert c.imu.accel.noise_density_g_rthz == 70e-6 and c.imu.accel.range_g == 16.0
     assert c.gps.pos_sigma_h_m == pytest.approx(2.123, abs=1e-3)
-    assert c.pitot.range_pa == pytest.approx(6894.757, abs=1e-3)
+    assert c.pitot.range_pa == pytest.approx(5 * 6894.757, abs=1e-2)
     assert c.baro.qnh_pa == 101325.0
 
 
