@@ -350,7 +350,7 @@ def cmd_upsets(args: argparse.Namespace) -> int:
         args.aircraft, args.count, args.seed, out, args.board_lib,
         altitude_m=args.altitude_m, duration_s=args.duration_s, floor_m=args.floor_m,
         jobs=args.jobs, plots=args.plots, known_failures=known,
-        pitch_mode=args.pitch_mode)
+        pitch_mode=args.pitch_mode, attitude=args.attitude)
     print(table)
     print(f"wrote {out.resolve()} (summary.md, summary.json, one folder and "
           "scenario file per upset)")
@@ -399,6 +399,8 @@ def _add_upsets_parser(sub: Any) -> None:
                         f"{upsets.DEFAULT_FLOOR_M:g})")
     u.add_argument("--jobs", type=int, default=1, help="parallel runs (default 1)")
     u.add_argument("--plots", action="store_true", help="also write the PNG plots of each run")
+    u.add_argument("--attitude", choices=("truth", "estimate"), default="truth",
+                   help="what the law flies on: JSBSim's truth or the firmware's estimate")
     u.add_argument("--pitch-mode", choices=("earth_frame", "tilt_cross"), default="earth_frame",
                    help="the law's pitch method (default earth_frame, the tuned one)")
     u.add_argument("--known-failures", nargs="*", default=[], metavar="AIRCRAFT:INDEX",

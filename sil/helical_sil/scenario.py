@@ -89,6 +89,9 @@ AIRCRAFT_NAME_RE = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.\-]{0,63}")
 TURBULENCE = ("none", "light", "moderate", "severe")
 PITCH_MODES = ("earth_frame", "tilt_cross")
 
+# the estimator against JSBSim (metrics.estimator_metrics), per segment and run
+ESTIMATOR_METRICS = ("attitude_error_rms_deg", "attitude_error_max_deg", "heading_error_max_deg",
+                     "gyro_bias_error_deg_s")
 SEGMENT_METRICS = (
     "turn_rate_rmse_deg_s", "turn_rate_error_pct", "turn_entry_s", "bank_overshoot_deg",
     "altitude_change_m", "altitude_change_per_360_m", "sideslip_rms_deg",
@@ -106,6 +109,7 @@ SEGMENT_METRICS = (
     "air_relative_altitude_error_max_m", "unavoidable_sink_max_m",
     "altitude_error_net_of_air_max_m", "air_down_m", "wind_down_max_m_s", "wind_up_max_m_s",
     # --- end fault campaign ---
+    *ESTIMATOR_METRICS,
 )
 # metrics computed only with [metrics] climb_capability_m_s
 NEEDS_CLIMB_CAPABILITY = ("unavoidable_sink_max_m", "altitude_error_net_of_air_max_m",
@@ -121,6 +125,7 @@ RUN_METRICS = (
     "recovery_time_s", "tilt_error_end_deg", "min_altitude_m", "bank_abs_max_deg",
     "airspeed_min_m_s", "airspeed_max_m_s", "min_altitude_net_of_air_m",
     # --- end fault campaign ---
+    *ESTIMATOR_METRICS,
 )
 
 # --- flight modes (issue 5): [modes], [nav], [fbw], [aoa], [[waypoint]], [[rc]] ---

@@ -134,6 +134,10 @@ class _TriadErrors:
         m = (np.eye(3) + s) @ mount  # the sensor reads m @ (true value)
         self.matrix = [[float(v) for v in row] for row in m]
         self.rng = _rng(seed, noise_stream)
+        # normals drawn a block at a time: the same stream as six per call
+        # (numpy fills an array from the generator in order), a tenth the cost
+        self._normals: list[float] = []
+        self._next = 0
         self.sigma = noise_density * math.sqrt(rate_hz / 2.0)
         self.walk = walk
         self.walk_state = [0.0, 0.0, 0.0]
@@ -142,7 +146,12 @@ class _TriadErrors:
     def apply(self, true: tuple[float, float, float],
               dt_s: float) -> tuple[tuple[float, float, float], bool]:
         # plain floats: numpy's per-call overhead on 3-vectors is most of the cost
-        w = self.rng.standard_normal(6).tolist()  # fixed draw count: 3 walk, 3 noise
+        if self._next + 6 > len(self._normals):
+            self._normals = self.rng.standard_normal(6 * 512).tolist()
+            self._next = 0
+        n = self._next  # fixed draw count: 3 walk, 3 noise
+        w = self._normals[n:n + 6]
+        self._next = n + 6
         k = self.walk * math.sqrt(dt_s)
         ws = self.walk_state
         fs = self.full_scale

@@ -625,15 +625,17 @@ def _raw_sensors(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
     n = min(len(batch), IMU_MAX)
     sens.imu_count = n  # type: ignore[attr-defined]
     lim = sc.gyro_saturation_rad_s if t >= sc.fault_start_s - 1e-9 else None
+    b = [float(x) for x in bias]
     for i in range(n):
-        g = np.asarray(batch[i].gyro_rad_s, dtype=float) + bias
+        g = [batch[i].gyro_rad_s[k] + b[k] for k in range(3)]
         if sc.gyro_noise_rad_s > 0.0:
-            g = g + sc.gyro_noise_rad_s * rng.normal(0.0, 1.0, size=3)
+            nz = rng.normal(0.0, 1.0, size=3)
+            g = [g[k] + sc.gyro_noise_rad_s * float(nz[k]) for k in range(3)]
         if lim is not None:
-            g = np.clip(g, -lim, lim)
-        for k in range(3):
-            sens.gyro_rad_s[i][k] = float(g[k])  # type: ignore[attr-defined]
-            sens.accel_g[i][k] = float(batch[i].accel_g[k])  # type: ignore[attr-defined]
+            g = [min(lim, max(-lim, v)) for v in g]
+        gi, ai, acc = sens.gyro_rad_s[i], sens.accel_g[i], batch[i].accel_g  # type: ignore
+        gi[0], gi[1], gi[2] = g
+        ai[0], ai[1], ai[2] = acc
     gps = model.gps(state, t)
     sens.gps_fresh = int(gps.fresh)  # type: ignore[attr-defined]
     sens.gps_fix = 3 if gps.fix_3d else 0  # type: ignore[attr-defined]
