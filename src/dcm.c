@@ -199,16 +199,21 @@ static void air_velocity(const int32_t r[3][3], const ht_dcm_aiding_t *a, uint8_
 {
     const int32_t v = a->airspeed_cm_s; /* (0, 32767] */
     const int32_t climb = (use_gps != 0u) ? -clamp32(a->vel_ned_cm_s[2], 32767) : 0;
-    const int32_t r22_q14 = qi_rshift_round(r[2][2], 16u);
-    int32_t vz = 0;
-    if (r22_q14 >= 4096 || r22_q14 <= -4096) {
-        const int32_t num = clamp32(-climb - qi_mul32(v, r[2][1], 30u), 65535);
-        vz = clamp32((num * 16384) / r22_q14, v / 2);
+    /* R[2][2] in Q15 (|.| in [8192, 49152] where used): the quotient is
+     * formed in two integer steps so that vz keeps its Q8 fraction */
+    const int32_t r22_q15 = qi_rshift_round(r[2][2], 15u);
+    int32_t vz_q8 = 0;
+    if (r22_q15 >= 8192 || r22_q15 <= -8192) {
+        const int32_t num_q8 = clamp32(-climb - qi_mul32(v, r[2][1], 30u), 65535) * 256;
+        const int32_t quot = num_q8 / r22_q15; /* |.| <= 2^24 / 2^13 */
+        const int32_t rem = num_q8 % r22_q15;  /* |.| < 49152: times 2^15 fits */
+        vz_q8 = clamp32((quot * 32768) + ((rem * 32768) / r22_q15), v * 128);
     }
-    const int32_t vy = v - ((vz * vz) / (2 * v));
+    /* vy = V - vz^2 / (2 V): (vz / V) in Q15 first, |vz| <= V/2 */
+    const int32_t ratio_q15 = (vz_q8 * 128) / v;
     v_q8[0] = 0;
-    v_q8[1] = vy * 256;
-    v_q8[2] = vz * 256;
+    v_q8[1] = (v * 256) - qi_mul32(vz_q8, ratio_q15, 16u);
+    v_q8[2] = vz_q8;
 }
 
 /* The velocity for the centripetal term, body axes, cm/s in Q8 (0 when none):
@@ -286,13 +291,13 @@ static int32_t accel_weight_q16(const ht_dcm_t *d, int32_t mag_q16)
  * dm = (w x v - f) / |w x v - f| against R's bottom row, e = dm x R[2]: a
  * rotation about e turns R[2] toward dm. Returns the flags it sets.
  */
-static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
-                                const ht_dcm_aiding_t *a, const q16_t acc[3], uint16_t flags,
-                                int32_t e[3])
+static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
+                                const q16_t acc[3], uint16_t flags, int32_t e[3])
 {
     zero3(e);
     int32_t v_q8[3];
-    uint16_t f = cf_velocity(d, s->r, a, v_q8);
+    const ht_dcm_state_t *cs = s; /* the matrix is read only here */
+    uint16_t f = cf_velocity(d, cs->r, a, v_q8);
     int32_t v_gs[3]; /* g*s, Q16 */
     for (unsigned i = 0u; i < 3u; i++) {
         v_gs[i] = qi_mul32(v_q8[i], CM_S_Q8_TO_GS_Q16_Q24, 32u);
@@ -311,6 +316,23 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, const ht_dcm_state_t *s,
     for (unsigned i = 0u; i < 3u; i++) {
         g[i] = qi_sub_sat32(g[i], acc[i]);
     }
+    /* Vibration: a propeller's 0.2 g reaches the samples (aliased below the
+     * IMU rate) and the weight below is not linear in it, so an unfiltered
+     * reference is biased (3.4 deg in the c172p SIL). The reference is
+     * low-passed over 8 samples (40 ms at 200 Hz: a 40 Hz alias at 120 Hz is
+     * cut 13 times) before its direction and its weight are taken. */
+    /* The filter's state is Q24: in Q16 an eighth of a small difference
+     * would round to nothing and leave the reference a few LSB off. */
+    for (unsigned i = 0u; i < 3u; i++) {
+        const int32_t g_q24 = clamp32(g[i], 0x7FFFFF) * 256; /* within +/-128 g */
+        s->g_filt_q24[i] =
+            (s->g_filt_valid == 0u)
+                ? g_q24
+                : qi_add_sat32(s->g_filt_q24[i],
+                               qi_rshift_round(qi_sub_sat32(g_q24, s->g_filt_q24[i]), 3u));
+        g[i] = qi_rshift_round(s->g_filt_q24[i], 8u);
+    }
+    s->g_filt_valid = 1u;
     int32_t u[3];
     int32_t wt = 0;
     if (q_unit3_q28(g, u) != 0 && (flags & (uint16_t)HT_DCM_F_ACCEL_SATURATED) == 0u) {

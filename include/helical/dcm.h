@@ -161,6 +161,8 @@ typedef struct {
     q16_t accel_fwd_g;        /* filtered rate of change of the airspeed, g, Q16 */
     int16_t speed_prev_cm_s;  /* the airspeed of the previous sample ... */
     uint8_t speed_prev_valid; /* ... when it was valid */
+    int32_t g_filt_q24[3];    /* the gravity reference, low-passed (vibration), g, Q24 */
+    uint8_t g_filt_valid;
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;

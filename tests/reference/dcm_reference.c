@@ -172,11 +172,30 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     for (int i = 0; i < 3; i++) {
         v[i] /= G_CM_S2;
     }
+    /* the acceleration along the path (dcm.c forward_acceleration) */
+    {
+        double raw = 0.0;
+        if (a->airspeed_valid && s->speed_prev_valid) {
+            raw = clampd(a->airspeed_cm_s - s->speed_prev, 2000.0) / p->dt / G_CM_S2;
+        }
+        s->accel_fwd += (raw - s->accel_fwd) / 32.0;
+        s->speed_prev_valid = a->airspeed_valid != 0;
+        s->speed_prev = a->airspeed_cm_s;
+    }
     double g[3];
     cross(s->rate, v, g);
+    if (p->centripetal != HT_DCM_CF_OFF) {
+        g[1] += s->accel_fwd;
+    }
     for (int i = 0; i < 3; i++) {
         g[i] -= acc[i];
     }
+    /* the vibration low-pass over 8 samples (dcm.c rollpitch_error) */
+    for (int i = 0; i < 3; i++) {
+        s->g_filt[i] = s->g_filt_valid ? s->g_filt[i] + (g[i] - s->g_filt[i]) / 8.0 : g[i];
+        g[i] = s->g_filt[i];
+    }
+    s->g_filt_valid = 1;
     const double gm = sqrt(dot(g, g));
     double w = 0.0;
     if (gm > 0.0 && !acc_sat) {

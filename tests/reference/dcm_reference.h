@@ -24,6 +24,11 @@ typedef struct {
     double bias[3];
     double rate[3];
     int aligned;
+    double g_filt[3]; /* the vibration low-pass of the gravity reference */
+    int g_filt_valid;
+    double accel_fwd;  /* filtered rate of change of the airspeed, g */
+    double speed_prev; /* the previous sample's airspeed, cm/s (when valid) */
+    int speed_prev_valid;
 } dcmr_state_t;
 
 /* The same parameters in real units (from the integer ones). */
