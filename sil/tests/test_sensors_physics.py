@@ -208,8 +208,8 @@ def test_full_model_in_a_jsbsim_loop() -> None:
             fixes.append(g)
         alt.append(model.baro(s, t).altitude_m - s.alt_msl_m)
     a = np.mean(acc, axis=0)
-    # 1 g up within the default 3-sigma bias (20 mg), scale and cross-axis errors
-    assert np.all(np.abs(a - [0.0, 0.022, -0.997]) < 0.03), a
+    # 1 g up within the default (calibrated) 3-sigma bias, scale and cross-axis errors
+    assert np.all(np.abs(a - [0.0, 0.022, -0.997]) < 0.005), a
     # epochs 0, 0.2 ... 9.8 s, each 0.1 s later (epoch 0 sampled at the first
     # call, 1/120 s: labelled so)
     assert len(fixes) == 50
