@@ -90,9 +90,9 @@ static void test_defaults_and_derived_values(void)
 {
     TEST_ASSERT_EQUAL_UINT16(200u, prm.imu_rate_hz);
     TEST_ASSERT_EQUAL_INT32(13107, prm.kp_rollpitch);
-    TEST_ASSERT_EQUAL_INT32(131, prm.ki_rollpitch);
+    TEST_ASSERT_EQUAL_INT32(655, prm.ki_rollpitch);
     TEST_ASSERT_EQUAL_INT32(32768, prm.kp_yaw);
-    TEST_ASSERT_EQUAL_INT32(328, prm.ki_yaw);
+    TEST_ASSERT_EQUAL_INT32(655, prm.ki_yaw);
     TEST_ASSERT_EQUAL_INT32(6554, prm.gyro_bias_max_rad_s);
     TEST_ASSERT_EQUAL_INT32(2287206, prm.gyro_limit_rad_s);
     TEST_ASSERT_EQUAL_INT32(16 * Q16_ONE, prm.accel_limit_g);
