@@ -34,11 +34,11 @@ void ht_dcm_params_default(ht_dcm_params_t *p)
         return;
     }
     p->imu_rate_hz = 200u;
-    /* Q16 of 0.2, 0.01, 0.5, 0.01, 0.1 and 34.9 (2000 deg/s), rounded */
+    /* Q16 of 0.2, 0.01, 0.5, 0.005, 0.1 and 34.9 (2000 deg/s), rounded */
     p->kp_rollpitch = 13107;
     p->ki_rollpitch = 655;
     p->kp_yaw = 32768;
-    p->ki_yaw = 655;
+    p->ki_yaw = 328;
     p->gyro_bias_max_rad_s = 6554;
     p->gyro_limit_rad_s = 2287206;
     p->accel_limit_g = 16 * Q16_ONE;

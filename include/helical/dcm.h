@@ -64,7 +64,7 @@ typedef struct {
     q16_t kp_rollpitch;         /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
     q16_t ki_rollpitch;         /* 1/s^2, [0, 4]; default 0.01 */
     q16_t kp_yaw;               /* 1/s, [0, 16]; default 0.5 */
-    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.01 */
+    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.005 */
     q16_t gyro_bias_max_rad_s;  /* bound of each bias component, [0, 1]; default 0.1 */
     q16_t gyro_limit_rad_s;     /* the gyro's full scale: |w| >= this flags saturation,
                                    [1, 64]; default 34.9 (2000 deg/s) */
