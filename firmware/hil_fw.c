@@ -11,6 +11,7 @@
 #define HAVE_ALT 0x02u
 #define HAVE_SPD 0x04u
 #define HAVE_OUT 0x08u
+#define HAVE_EST 0x10u
 
 #define NO_SUCH_LENGTH 0xFEu /* longer than any payload: the id is unknown */
 
@@ -51,7 +52,11 @@ void hil_fw_init(hil_fw_t *h)
     h->rx_len[HIL_ID_CFG_SPD] = HIL_LEN_CFG_SPD;
     h->rx_len[HIL_ID_CFG_OUT] = HIL_LEN_CFG_OUT;
     h->rx_len[HIL_ID_START] = 0u;
+    h->rx_len[HIL_ID_CFG_EST] = HIL_LEN_CFG_EST;
     h->rx_len[HIL_ID_SENSORS] = HIL_LEN_SENSORS;
+    h->rx_len[HIL_ID_STEP] = HIL_LEN_STEP;
+    h->rx_len[HIL_ID_TRUTH] = HIL_LEN_TRUTH;
+    h->rx_len[HIL_ID_IMU] = HIL_LEN_IMU;
     const hil_msg_table_t table = {h->rx_len, (uint8_t)HIL_ID_HOST_COUNT};
     hil_decoder_init(&h->rx, table);
     fw_config_default(&h->cfg);
@@ -173,18 +178,45 @@ static void cfg_out(hil_fw_t *h, const uint8_t *p)
     h->have |= HAVE_OUT;
 }
 
-/* The IMU rate of the step: the control rate (CFG_ALT rate_hz) times the
- * smallest divider that brings it into the estimator's range (>= 50 Hz). */
-static void rates(fw_config_t *c)
+/* The estimator and the IMU timing, as the SIL host board sets them (the
+ * divider is given, not derived: fw_init checks that it agrees with the
+ * rates). */
+static void cfg_est(hil_fw_t *h, const uint8_t *p)
 {
-    const uint16_t rate = (c->modes.alt.rate_hz > 0u) ? c->modes.alt.rate_hz : 1u;
-    uint16_t div = 1u;
-    while ((uint32_t)rate * div < 50u && div < 100u) {
-        div++;
-    }
-    c->modes.rate_hz = rate;
-    c->control_divider = div;
-    c->dcm.imu_rate_hz = (uint16_t)((uint32_t)rate * div > 1000u ? 1000u : rate * div);
+    fw_config_t *c = &h->cfg;
+    ht_dcm_params_t *d = &c->dcm;
+    d->imu_rate_hz = hil_get_u16(&p[0]);
+    c->control_divider = hil_get_u16(&p[2]);
+    c->imu_timeout_samples = hil_get_u16(&p[4]);
+    d->kp_rollpitch = hil_get_i32(&p[6]);
+    d->ki_rollpitch = hil_get_i32(&p[10]);
+    d->kp_yaw = hil_get_i32(&p[14]);
+    d->ki_yaw = hil_get_i32(&p[18]);
+    d->gyro_bias_max_rad_s = hil_get_i32(&p[22]);
+    d->gyro_limit_rad_s = hil_get_i32(&p[26]);
+    d->accel_limit_g = hil_get_i32(&p[30]);
+    d->accel_band_g = hil_get_i32(&p[34]);
+    d->gps_min_speed_cm_s = hil_get_i16(&p[38]);
+    d->centripetal = p[40];
+    h->have |= HAVE_EST;
+}
+
+void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
+{
+    const ht_dcm_params_t *d = &c->dcm;
+    hil_put_u16(&p[0], d->imu_rate_hz);
+    hil_put_u16(&p[2], c->control_divider);
+    hil_put_u16(&p[4], c->imu_timeout_samples);
+    hil_put_i32(&p[6], d->kp_rollpitch);
+    hil_put_i32(&p[10], d->ki_rollpitch);
+    hil_put_i32(&p[14], d->kp_yaw);
+    hil_put_i32(&p[18], d->ki_yaw);
+    hil_put_i32(&p[22], d->gyro_bias_max_rad_s);
+    hil_put_i32(&p[26], d->gyro_limit_rad_s);
+    hil_put_i32(&p[30], d->accel_limit_g);
+    hil_put_i32(&p[34], d->accel_band_g);
+    hil_put_i16(&p[38], d->gps_min_speed_cm_s);
+    p[40] = d->centripetal;
 }
 
 /* The ACK of a refused START: which block, which field. */
@@ -206,8 +238,20 @@ static void refused(hil_fw_t *h)
         block = (uint8_t)HIL_ID_CFG_OUT;
         detail = (uint8_t)fw->bad_sub;
         break;
+    case FW_BAD_DCM:
+        block = (uint8_t)HIL_ID_CFG_EST;
+        detail = (uint8_t)fw->bad_sub; /* ht_dcm_param_id_t */
+        break;
+    case FW_BAD_DIVIDER: /* the divider does not agree with the rates */
+        block = (uint8_t)HIL_ID_CFG_EST;
+        detail = (uint8_t)HIL_EST_BAD_DIVIDER;
+        break;
+    case FW_BAD_TIMEOUT:
+        block = (uint8_t)HIL_ID_CFG_EST;
+        detail = (uint8_t)HIL_EST_BAD_TIMEOUT;
+        break;
     default:
-        break; /* the estimator, the guard, the rates: all follow CFG_ALT's rate */
+        break; /* the upset guard follows CFG_ALT's rate */
     }
     ack(h, (uint8_t)HIL_ACK_REFUSED, block, detail);
 }
@@ -216,10 +260,11 @@ static void refused(hil_fw_t *h)
  * altitude integrators from CFG_ALT, clamped as every host does). */
 static void start(hil_fw_t *h)
 {
-    static const uint8_t block_id[4] = {HIL_ID_CFG_LAW, HIL_ID_CFG_ALT, HIL_ID_CFG_SPD,
-                                        HIL_ID_CFG_OUT};
+    static const uint8_t block_id[5] = {HIL_ID_CFG_LAW, HIL_ID_CFG_ALT, HIL_ID_CFG_SPD,
+                                        HIL_ID_CFG_OUT, HIL_ID_CFG_EST};
     h->started = 0u;
-    for (unsigned i = 0; i < 4u; ++i) {
+    h->step_open = 0u;
+    for (unsigned i = 0; i < 5u; ++i) {
         if ((h->have & (1u << i)) == 0u) {
             ack(h, (uint8_t)HIL_ACK_MISSING, block_id[i], block_id[i]);
             return;
@@ -229,7 +274,7 @@ static void start(hil_fw_t *h)
         ack(h, (uint8_t)HIL_ACK_REFUSED, (uint8_t)HIL_ID_CFG_OUT, h->cfg.out.count);
         return;
     }
-    rates(&h->cfg);
+    h->cfg.modes.rate_hz = h->cfg.modes.alt.rate_hz; /* the control rate, as the SIL's */
     if (fw_init(&h->fw, &h->cfg) == 0) {
         refused(h);
         return;
@@ -239,133 +284,306 @@ static void start(hil_fw_t *h)
     ack(h, (uint8_t)HIL_ACK_OK, (uint8_t)HIL_ID_START, 0u);
 }
 
-/* --- the control step ------------------------------------------------------ */
-
-void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o)
-{
-    (void)memset(o, 0, sizeof *o);
-    if (h->started == 0u) {
-        return;
-    }
-    fw_nav_t *n = &h->nav;
-    (void)memset(n, 0, sizeof *n);
-    for (unsigned i = 0u; i < 3u; ++i) {
-        n->down_q14[i] = in->imu.down_q14[i];
-        n->gyro_q11_rad_s[i] = in->imu.gyro_q11_rad_s[i];
-    }
-    n->airspeed_cm_s = in->imu.airspeed_cm_s;
-    n->altitude_cm = in->altitude_cm;
-    n->climb_cm_s = in->climb_cm_s;
-    fw_guided_t *g = &h->guided;
-    g->turn_rate_rad_s = in->turn_rate_rad_s;
-    g->pitch_ratio = in->pitch_ratio;
-    g->altitude_cm = in->altitude_cmd_cm;
-    g->airspeed_cm_s = in->airspeed_cmd_cm_s;
-    g->throttle = in->throttle;
-    g->altitude_hold = ((in->flags & HIL_SF_ALTITUDE_HOLD) != 0u) ? 1u : 0u;
-    g->speed_hold = ((in->flags & HIL_SF_SPEED_HOLD) != 0u) ? 1u : 0u;
-    g->inverted = ((in->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u;
-    g->pitch_mode = ((in->flags & HIL_SF_TILT_CROSS) != 0u) ? 1u : 0u;
-    fw_inputs_t *fi = &h->fw_in;
-    (void)memset(fi, 0, sizeof *fi); /* no raw samples in protocol version 2 */
-    fi->guided = g;
-    fi->external = n;
-    /* the frame is one control period: the step runs until its control chain has */
-    for (uint16_t k = 0u; k < h->cfg.control_divider; ++k) {
-        if (fw_step(&h->fw, fi, &h->fw_out) != 0) {
-            break;
-        }
-    }
-    const fw_output_t *fo = &h->fw_out;
-    for (unsigned i = 0; i < HIL_OUT_CHANNELS && i < fo->pulse_count; ++i) {
-        o->pulse_us[i] = fo->pulse_us[i];
-    }
-    o->law = fo->law;
-    o->throttle = fo->throttle;
-    o->pitch_cmd = fo->pitch_cmd;
-    o->servo_clamped = fo->servo_clamped;
-}
-
 /* --- frames ---------------------------------------------------------------- */
 
-void hil_sensors_parse(const uint8_t *p, uint32_t *seq, hil_step_in_t *in)
+void hil_step_write(uint8_t *p, const hil_step_t *s)
 {
-    *seq = get_u32(&p[0]);
-    in->imu.down_q14[0] = hil_get_i16(&p[4]);
-    in->imu.down_q14[1] = hil_get_i16(&p[6]);
-    in->imu.down_q14[2] = hil_get_i16(&p[8]);
-    in->imu.gyro_q11_rad_s[0] = hil_get_i16(&p[10]);
-    in->imu.gyro_q11_rad_s[1] = hil_get_i16(&p[12]);
-    in->imu.gyro_q11_rad_s[2] = hil_get_i16(&p[14]);
-    in->imu.airspeed_cm_s = hil_get_i16(&p[16]);
-    in->altitude_cm = hil_get_i32(&p[18]);
-    in->climb_cm_s = hil_get_i32(&p[22]);
-    in->turn_rate_rad_s = hil_get_i16(&p[26]);
-    in->pitch_ratio = hil_get_i32(&p[28]);
-    in->altitude_cmd_cm = hil_get_i32(&p[32]);
-    in->airspeed_cmd_cm_s = hil_get_i16(&p[36]);
-    in->throttle = hil_get_i16(&p[38]);
-    in->flags = p[40];
+    const board_sensors_t *b = &s->sensors;
+    const fw_guided_t *g = &s->guided;
+    put_u32(&p[0], s->seq);
+    p[4] = s->flags;
+    p[5] = s->imu_count;
+    p[6] = b->gps.fix;
+    p[7] = (uint8_t)(((b->gps.fresh != 0u) ? HIL_FRESH_GPS : 0u) |
+                     ((b->airspeed_fresh != 0u) ? HIL_FRESH_AIRSPEED : 0u) |
+                     ((b->baro_fresh != 0u) ? HIL_FRESH_BARO : 0u));
+    hil_put_i32(&p[8], b->gps.lat_e7);
+    hil_put_i32(&p[12], b->gps.lon_e7);
+    hil_put_i32(&p[16], b->gps.alt_cm);
+    for (unsigned k = 0u; k < 3u; ++k) {
+        hil_put_i32(&p[20u + 4u * k], b->gps.vel_ned_cm_s[k]);
+    }
+    hil_put_i16(&p[32], b->airspeed_cm_s);
+    hil_put_i32(&p[34], b->baro_alt_cm);
+    hil_put_i16(&p[38], g->turn_rate_rad_s);
+    hil_put_i32(&p[40], g->pitch_ratio);
+    hil_put_i32(&p[44], g->altitude_cm);
+    hil_put_i16(&p[48], g->airspeed_cm_s);
+    hil_put_i16(&p[50], g->throttle);
 }
 
-void hil_sensors_write(uint8_t *p, uint32_t seq, const hil_step_in_t *in)
+/* Reserved bits are kept in the struct (the caller refuses them); the
+ * command's switches come from the flags. */
+void hil_step_parse(const uint8_t *p, hil_step_t *s)
 {
-    put_u32(&p[0], seq);
-    hil_put_i16(&p[4], in->imu.down_q14[0]);
-    hil_put_i16(&p[6], in->imu.down_q14[1]);
-    hil_put_i16(&p[8], in->imu.down_q14[2]);
-    hil_put_i16(&p[10], in->imu.gyro_q11_rad_s[0]);
-    hil_put_i16(&p[12], in->imu.gyro_q11_rad_s[1]);
-    hil_put_i16(&p[14], in->imu.gyro_q11_rad_s[2]);
-    hil_put_i16(&p[16], in->imu.airspeed_cm_s);
-    hil_put_i32(&p[18], in->altitude_cm);
-    hil_put_i32(&p[22], in->climb_cm_s);
-    hil_put_i16(&p[26], in->turn_rate_rad_s);
-    hil_put_i32(&p[28], in->pitch_ratio);
-    hil_put_i32(&p[32], in->altitude_cmd_cm);
-    hil_put_i16(&p[36], in->airspeed_cmd_cm_s);
-    hil_put_i16(&p[38], in->throttle);
-    p[40] = in->flags;
+    (void)memset(s, 0, sizeof *s);
+    board_sensors_t *b = &s->sensors;
+    fw_guided_t *g = &s->guided;
+    s->seq = get_u32(&p[0]);
+    s->flags = p[4];
+    s->imu_count = p[5];
+    b->gps.fix = p[6];
+    s->fresh = p[7];
+    b->gps.fresh = ((s->fresh & HIL_FRESH_GPS) != 0u) ? 1u : 0u;
+    b->airspeed_fresh = ((s->fresh & HIL_FRESH_AIRSPEED) != 0u) ? 1u : 0u;
+    b->baro_fresh = ((s->fresh & HIL_FRESH_BARO) != 0u) ? 1u : 0u;
+    b->gps.lat_e7 = hil_get_i32(&p[8]);
+    b->gps.lon_e7 = hil_get_i32(&p[12]);
+    b->gps.alt_cm = hil_get_i32(&p[16]);
+    for (unsigned k = 0u; k < 3u; ++k) {
+        b->gps.vel_ned_cm_s[k] = hil_get_i32(&p[20u + 4u * k]);
+    }
+    b->airspeed_cm_s = hil_get_i16(&p[32]);
+    b->baro_alt_cm = hil_get_i32(&p[34]);
+    g->turn_rate_rad_s = hil_get_i16(&p[38]);
+    g->pitch_ratio = hil_get_i32(&p[40]);
+    g->altitude_cm = hil_get_i32(&p[44]);
+    g->airspeed_cm_s = hil_get_i16(&p[48]);
+    g->throttle = hil_get_i16(&p[50]);
+    g->altitude_hold = ((s->flags & HIL_SF_ALTITUDE_HOLD) != 0u) ? 1u : 0u;
+    g->speed_hold = ((s->flags & HIL_SF_SPEED_HOLD) != 0u) ? 1u : 0u;
+    g->inverted = ((s->flags & HIL_SF_INVERTED) != 0u) ? 1u : 0u;
+    g->pitch_mode = ((s->flags & HIL_SF_TILT_CROSS) != 0u) ? 1u : 0u;
 }
 
-/* One step on a SENSORS frame: the pulses go to the timer, and the answer
- * carries what the timer now holds (read back), the output stage's pulses
- * and the law's intermediates. */
-static void on_sensors(hil_fw_t *h)
+void hil_truth_write(uint8_t *p, const fw_nav_t *n)
 {
-    uint32_t seq = 0u;
-    hil_sensors_parse(h->rx.payload, &seq, &h->in);
-    if ((h->in.flags & (uint8_t)~HIL_SF_ALL) != 0u) {
-        nak(h, (uint8_t)HIL_ID_SENSORS, (uint8_t)HIL_NAK_BAD_FIELD);
+    for (unsigned k = 0u; k < 3u; ++k) {
+        hil_put_i16(&p[2u * k], n->down_q14[k]);
+        hil_put_i16(&p[6u + 2u * k], n->gyro_q11_rad_s[k]);
+    }
+    hil_put_i16(&p[12], n->airspeed_cm_s);
+    hil_put_i32(&p[14], n->altitude_cm);
+    hil_put_i32(&p[18], n->climb_cm_s);
+    hil_put_i32(&p[22], n->north_cm);
+    hil_put_i32(&p[26], n->east_cm);
+    hil_put_i32(&p[30], n->vel_north_cm_s);
+    hil_put_i32(&p[34], n->vel_east_cm_s);
+    hil_put_i16(&p[38], n->heading_north);
+    hil_put_i16(&p[40], n->heading_east);
+}
+
+void hil_truth_parse(const uint8_t *p, fw_nav_t *n)
+{
+    (void)memset(n, 0, sizeof *n);
+    for (unsigned k = 0u; k < 3u; ++k) {
+        n->down_q14[k] = hil_get_i16(&p[2u * k]);
+        n->gyro_q11_rad_s[k] = hil_get_i16(&p[6u + 2u * k]);
+    }
+    n->airspeed_cm_s = hil_get_i16(&p[12]);
+    n->altitude_cm = hil_get_i32(&p[14]);
+    n->climb_cm_s = hil_get_i32(&p[18]);
+    n->north_cm = hil_get_i32(&p[22]);
+    n->east_cm = hil_get_i32(&p[26]);
+    n->vel_north_cm_s = hil_get_i32(&p[30]);
+    n->vel_east_cm_s = hil_get_i32(&p[34]);
+    n->heading_north = hil_get_i16(&p[38]);
+    n->heading_east = hil_get_i16(&p[40]);
+}
+
+void hil_imu_write(uint8_t *p, const ht_imu_sample_t *s)
+{
+    for (unsigned k = 0u; k < 3u; ++k) {
+        hil_put_i32(&p[4u * k], s->gyro_rad_s[k]);
+        hil_put_i32(&p[12u + 4u * k], s->accel_g[k]);
+    }
+}
+
+void hil_imu_parse(const uint8_t *p, ht_imu_sample_t *s)
+{
+    for (unsigned k = 0u; k < 3u; ++k) {
+        s->gyro_rad_s[k] = hil_get_i32(&p[4u * k]);
+        s->accel_g[k] = hil_get_i32(&p[12u + 4u * k]);
+    }
+}
+
+void hil_state_write(uint8_t *p, const hil_state_t *s)
+{
+    const ht_dcm_output_t *e = &s->est;
+    const fw_nav_t *n = &s->nav;
+    put_u32(&p[0], s->seq);
+    p[4] = s->flags;
+    for (unsigned k = 0u; k < 3u; ++k) {
+        hil_put_i16(&p[5u + 2u * k], e->r[2][k]);
+        hil_put_i32(&p[17u + 4u * k], e->gyro_bias_rad_s[k]);
+        hil_put_i16(&p[31u + 2u * k], n->down_q14[k]);
+    }
+    hil_put_i16(&p[11], e->roll_cdeg);
+    hil_put_i16(&p[13], e->pitch_cdeg);
+    hil_put_u16(&p[15], e->yaw_cdeg);
+    hil_put_u16(&p[29], e->flags);
+    hil_put_i16(&p[37], n->airspeed_cm_s);
+    hil_put_i32(&p[39], n->altitude_cm);
+    hil_put_i32(&p[43], n->climb_cm_s);
+    hil_put_i32(&p[47], n->north_cm);
+    hil_put_i32(&p[51], n->east_cm);
+}
+
+/* The fields STATE carries; the rest of *s is zero. */
+void hil_state_parse(const uint8_t *p, hil_state_t *s)
+{
+    (void)memset(s, 0, sizeof *s);
+    ht_dcm_output_t *e = &s->est;
+    fw_nav_t *n = &s->nav;
+    s->seq = get_u32(&p[0]);
+    s->flags = p[4];
+    for (unsigned k = 0u; k < 3u; ++k) {
+        e->r[2][k] = hil_get_i16(&p[5u + 2u * k]);
+        e->gyro_bias_rad_s[k] = hil_get_i32(&p[17u + 4u * k]);
+        n->down_q14[k] = hil_get_i16(&p[31u + 2u * k]);
+    }
+    e->roll_cdeg = hil_get_i16(&p[11]);
+    e->pitch_cdeg = hil_get_i16(&p[13]);
+    e->yaw_cdeg = hil_get_u16(&p[15]);
+    e->flags = hil_get_u16(&p[29]);
+    n->airspeed_cm_s = hil_get_i16(&p[37]);
+    n->altitude_cm = hil_get_i32(&p[39]);
+    n->climb_cm_s = hil_get_i32(&p[43]);
+    n->north_cm = hil_get_i32(&p[47]);
+    n->east_cm = hil_get_i32(&p[51]);
+}
+
+/* --- the control step ------------------------------------------------------ */
+
+/* One call of the firmware step with the open step's inputs. The slow
+ * sensors' values hold for the whole step; their fresh flags and the truth
+ * solution go with the last sample only (as in sil_board_step). */
+static void call_step(hil_fw_t *h, const ht_imu_sample_t *imu, uint8_t last)
+{
+    fw_inputs_t *fi = &h->fw_in;
+    const board_sensors_t *b = &h->step.sensors;
+    (void)memset(fi, 0, sizeof *fi);
+    fi->sensors = h->step.sensors;
+    fi->sensors.imu_fresh = (imu != NULL) ? 1u : 0u;
+    if (imu != NULL) {
+        fi->sensors.imu = *imu;
+    }
+    fi->sensors.gps.fresh = (last != 0u) ? b->gps.fresh : 0u;
+    fi->sensors.airspeed_fresh = (last != 0u) ? b->airspeed_fresh : 0u;
+    fi->sensors.baro_fresh = (last != 0u) ? b->baro_fresh : 0u;
+    fi->guided = &h->step.guided;
+    fi->external = (last != 0u && (h->step.flags & HIL_SF_USE_TRUTH) != 0u) ? &h->truth : NULL;
+    if (fw_step(&h->fw, fi, &h->fw_out) != 0) {
+        h->step_ran = 1u;
+    }
+}
+
+/* STEP: check it and open the control step (an unfinished one is dropped:
+ * its samples have run, nothing is undone). */
+static void on_step(hil_fw_t *h)
+{
+    h->step_open = 0u;
+    hil_step_parse(h->rx.payload, &h->step);
+    const hil_step_t *s = &h->step;
+    if ((s->flags & (uint8_t)~HIL_SF_ALL) != 0u || s->imu_count > HIL_IMU_MAX ||
+        s->sensors.gps.fix > 3u || (s->fresh & (uint8_t)~HIL_FRESH_ALL) != 0u) {
+        nak(h, (uint8_t)HIL_ID_STEP, (uint8_t)HIL_NAK_BAD_FIELD);
         return;
     }
+    if (h->started == 0u) {
+        nak(h, (uint8_t)HIL_ID_STEP, (uint8_t)HIL_NAK_NOT_STARTED);
+        return;
+    }
+    h->step_open = 1u;
+    h->step_broken = 0u;
+    h->step_truth = 0u;
+    h->step_ran = 0u;
+    h->step_imu = 0u;
+}
+
+/* TRUTH: only inside a step that flies on it (else the step is broken). */
+static void on_truth(hil_fw_t *h)
+{
+    if (h->step_open == 0u || (h->step.flags & HIL_SF_USE_TRUTH) == 0u) {
+        h->step_broken = 1u;
+        return;
+    }
+    hil_truth_parse(h->rx.payload, &h->truth);
+    h->step_truth = 1u;
+}
+
+/* IMU: one sample, stepped now (not answered); beyond imu_count - 1 samples,
+ * or outside a step, it is not stepped and the step is broken. */
+static void on_imu(hil_fw_t *h)
+{
+    if (h->step_open == 0u || h->step_broken != 0u ||
+        (uint32_t)h->step_imu + 1u >= (uint32_t)h->step.imu_count) {
+        h->step_broken = 1u;
+        return;
+    }
+    ht_imu_sample_t imu;
+    hil_imu_parse(h->rx.payload, &imu);
+    call_step(h, &imu, 0u);
+    h->step_imu++;
+}
+
+/* SENSORS: the last sample closes the step; the pulses go to the timer, and
+ * the answer is STATE (the estimate, the solution flown) and OUTPUT (what the
+ * timer now holds, read back, the output stage's pulses, the law's
+ * intermediates). */
+static void on_sensors(hil_fw_t *h)
+{
+    const uint32_t seq = get_u32(&h->rx.payload[0]);
     if (h->started == 0u) {
         nak(h, (uint8_t)HIL_ID_SENSORS, (uint8_t)HIL_NAK_NOT_STARTED);
         return;
     }
-    hil_fw_step(h, &h->in, &h->res);
-    for (uint8_t i = 0; i < h->fw_out.pulse_count; ++i) {
-        (void)board_servo_write_us(i, h->fw_out.pulse_us[i]);
+    const hil_step_t *s = &h->step;
+    const uint8_t want_imu = (s->imu_count > 0u) ? (uint8_t)(s->imu_count - 1u) : 0u;
+    const uint8_t want_truth = ((s->flags & HIL_SF_USE_TRUTH) != 0u) ? 1u : 0u;
+    if (h->step_open == 0u || h->step_broken != 0u || seq != s->seq || h->step_imu != want_imu ||
+        h->step_truth != want_truth) {
+        h->step_open = 0u;
+        nak(h, (uint8_t)HIL_ID_SENSORS, (uint8_t)HIL_NAK_SEQUENCE);
+        return;
     }
-    board_servo_commit();
+    h->step_open = 0u;
+    if (s->imu_count > 0u) {
+        ht_imu_sample_t imu;
+        hil_imu_parse(&h->rx.payload[4], &imu);
+        call_step(h, &imu, 1u);
+    } else {
+        /* no sample: one control period of calls without one (the firmware
+         * counts the gap), as the SIL host board does */
+        const uint16_t calls = h->cfg.control_divider;
+        for (uint16_t k = 0u; k < calls; ++k) {
+            call_step(h, NULL, (k + 1u == calls) ? 1u : 0u);
+        }
+    }
+    const fw_output_t *fo = &h->fw_out;
+    if (h->step_ran != 0u) {
+        for (uint8_t i = 0; i < fo->pulse_count; ++i) {
+            (void)board_servo_write_us(i, fo->pulse_us[i]);
+        }
+        board_servo_commit();
+    }
     h->steps++;
 
+    hil_state_t *st = &h->state;
+    st->seq = seq;
+    st->flags = (uint8_t)(((h->step_ran != 0u) ? HIL_ST_CONTROL_RAN : 0u) |
+                          ((fo->failsafe != 0u) ? HIL_ST_FAILSAFE : 0u) |
+                          ((fo->guard_engaged != 0u) ? HIL_ST_GUARD_ENGAGED : 0u));
+    st->est = fo->est;
+    st->nav = fo->nav;
+    hil_state_write(h->payload, st);
+    send(h, (uint8_t)HIL_ID_STATE, (uint8_t)HIL_LEN_STATE);
+
     uint8_t *p = h->payload;
-    const hil_step_out_t *o = &h->res;
     put_u32(&p[0], seq);
     for (uint8_t i = 0; i < HIL_OUT_CHANNELS; ++i) {
         hil_put_u16(&p[4u + 2u * i], hil_servo_readback_us(i));
-        hil_put_u16(&p[12u + 2u * i], o->pulse_us[i]);
+        hil_put_u16(&p[12u + 2u * i], (i < fo->pulse_count) ? fo->pulse_us[i] : 0u);
     }
-    hil_put_i16(&p[20], o->law.aileron);
-    hil_put_i16(&p[22], o->law.elevator);
-    hil_put_i16(&p[24], o->law.rudder);
-    hil_put_i32(&p[26], o->pitch_cmd);
-    hil_put_i16(&p[30], o->throttle);
-    hil_put_i16(&p[32], o->law.turn_rate_used_rad_s);
-    hil_put_i16(&p[34], o->law.roll_error);
-    hil_put_i16(&p[36], o->law.pitch_error);
-    hil_put_u16(&p[38], (uint16_t)(o->law.flags | (o->servo_clamped ? 0x100u : 0u)));
+    hil_put_i16(&p[20], fo->law.aileron);
+    hil_put_i16(&p[22], fo->law.elevator);
+    hil_put_i16(&p[24], fo->law.rudder);
+    hil_put_i32(&p[26], fo->pitch_cmd);
+    hil_put_i16(&p[30], fo->throttle);
+    hil_put_i16(&p[32], fo->law.turn_rate_used_rad_s);
+    hil_put_i16(&p[34], fo->law.roll_error);
+    hil_put_i16(&p[36], fo->law.pitch_error);
+    hil_put_u16(&p[38], (uint16_t)(fo->law.flags | ((fo->servo_clamped != 0u) ? 0x100u : 0u)));
     send(h, (uint8_t)HIL_ID_OUTPUT, (uint8_t)HIL_LEN_OUTPUT);
 }
 
@@ -395,8 +613,21 @@ void hil_fw_on_byte(hil_fw_t *h, uint8_t byte)
         h->started = 0u;
         cfg_out(h, p);
         break;
+    case HIL_ID_CFG_EST:
+        h->started = 0u;
+        cfg_est(h, p);
+        break;
     case HIL_ID_START:
         start(h);
+        break;
+    case HIL_ID_STEP:
+        on_step(h);
+        break;
+    case HIL_ID_TRUTH:
+        on_truth(h);
+        break;
+    case HIL_ID_IMU:
+        on_imu(h);
         break;
     case HIL_ID_SENSORS:
         on_sensors(h);

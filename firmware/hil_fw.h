@@ -1,18 +1,21 @@
 /*
  * hil_fw.h - the firmware side of the hardware/processor-in-the-loop link
- * (docs/hil-protocol.md): configuration frames, one control step per sensor
- * frame, and the answer with the pulses read back from the timer.
+ * (docs/hil-protocol.md): configuration frames, the raw sensor samples of
+ * each control step, and the answer with the pulses read back from the timer
+ * and the estimator's state.
  *
  * The control step is THE firmware step (fw_step.h), as in the flight image
- * and the SIL host board. Protocol version 2 carries the simulator's
- * navigation solution (DCM row, rates, air data) and the scenario's command,
- * already converted: each SENSORS frame is fw_step's external solution and
- * guided command, given for control_divider calls (the control chain runs on
- * the last), so a PIL run and a SIL run with the truth attitude agree bit
- * for bit (firmware/tests/test_hil_fw.c checks the two on the host). Raw IMU
- * samples over the link are the next protocol version's (docs/hil-protocol.md).
+ * and the SIL host board. Protocol version 3 carries what the SIL host board
+ * (boards/sil) gives fw_step, already converted: per control step a STEP
+ * frame (GPS, pitot, baro, the guided command, flags), a TRUTH frame when the
+ * simulator's solution is flown, one IMU frame per sample but the last, and a
+ * SENSORS frame with the last sample, which ends the step and is answered by
+ * STATE and OUTPUT. Each sample goes through fw_step as it arrives, with the
+ * same inputs sil_board_step gives it, so a PIL run and a SIL run agree bit
+ * for bit in both attitude modes (firmware/tests/test_hil_fw.c checks the two
+ * on the host).
  *
- * Portable: the protocol and the step use only board.h plus the three link
+ * Portable: the protocol and the step use only board.h plus the link
  * functions below, which the HIL image's board file provides. All state is
  * in the caller's hil_fw_t.
  */
@@ -26,7 +29,7 @@
 #include "helical/board.h"
 #include "helical/hil_frame.h"
 
-#define HIL_PROTOCOL_VERSION 2u /* 2: CFG_ALT carries the airspeed protection */
+#define HIL_PROTOCOL_VERSION 3u /* 3: raw sensor samples, CFG_EST, STATE */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -35,90 +38,117 @@
 #define HIL_ID_CFG_SPD    0x12u
 #define HIL_ID_CFG_OUT    0x13u
 #define HIL_ID_START      0x14u /* empty: check the staged configuration, answered by ACK */
-#define HIL_ID_SENSORS    0x20u /* one control step, answered by OUTPUT (or NAK) */
-#define HIL_ID_HOST_COUNT 0x21u
+#define HIL_ID_CFG_EST    0x15u /* the estimator, the IMU rate, the divider, the timeout */
+#define HIL_ID_SENSORS    0x20u /* the step's last IMU sample: answered by STATE + OUTPUT */
+#define HIL_ID_STEP       0x21u /* opens a control step: slow sensors, command, flags */
+#define HIL_ID_TRUTH      0x22u /* the simulator's navigation solution (flag USE_TRUTH) */
+#define HIL_ID_IMU        0x23u /* one IMU sample, not the step's last: not answered */
+#define HIL_ID_HOST_COUNT 0x24u
 /* firmware -> host */
 #define HIL_ID_READY  0x81u
 #define HIL_ID_NAK    0x8Eu
 #define HIL_ID_ACK    0x94u
 #define HIL_ID_OUTPUT 0xA0u
+#define HIL_ID_STATE  0xA1u /* sent just before each OUTPUT */
 
 /* Payload lengths */
 #define HIL_LEN_CFG_LAW 49u
 #define HIL_LEN_CFG_ALT 52u
 #define HIL_LEN_CFG_SPD 22u
 #define HIL_LEN_CFG_OUT 58u
-#define HIL_LEN_SENSORS 41u
+#define HIL_LEN_CFG_EST 41u
+#define HIL_LEN_SENSORS 28u
+#define HIL_LEN_STEP    52u
+#define HIL_LEN_TRUTH   42u
+#define HIL_LEN_IMU     24u
 #define HIL_LEN_READY   24u
 #define HIL_LEN_NAK     2u
 #define HIL_LEN_ACK     4u
 #define HIL_LEN_OUTPUT  40u
+#define HIL_LEN_STATE   55u
 
-#define HIL_OUT_CHANNELS 4u /* channels reported in OUTPUT (the SIL's four) */
+#define HIL_OUT_CHANNELS 4u  /* channels reported in OUTPUT (the SIL's four) */
+#define HIL_IMU_MAX      32u /* IMU samples per control step (= SIL_IMU_MAX) */
 
-/* SENSORS flags */
+/* STEP flags */
 #define HIL_SF_ALTITUDE_HOLD 0x01u
 #define HIL_SF_SPEED_HOLD    0x02u
 #define HIL_SF_INVERTED      0x04u
 #define HIL_SF_TILT_CROSS    0x08u /* pitch method HT_PITCH_TILT_CROSS; else earth frame */
-#define HIL_SF_ALL           0x0Fu
+#define HIL_SF_USE_TRUTH     0x10u /* fly on the TRUTH frame's solution (the estimator runs) */
+#define HIL_SF_ALL           0x1Fu
+
+/* STEP fresh bits: which slow sensor is new (given with the step's last sample) */
+#define HIL_FRESH_GPS      0x01u
+#define HIL_FRESH_AIRSPEED 0x02u
+#define HIL_FRESH_BARO     0x04u
+#define HIL_FRESH_ALL      0x07u
+
+/* STATE flags */
+#define HIL_ST_CONTROL_RAN   0x01u /* the step ran the control chain: OUTPUT is new */
+#define HIL_ST_FAILSAFE      0x02u
+#define HIL_ST_GUARD_ENGAGED 0x04u
 
 /* ACK status */
 #define HIL_ACK_OK      0u
 #define HIL_ACK_MISSING 1u /* a configuration block was never received: detail = its id */
 #define HIL_ACK_REFUSED 2u /* a block failed its check: id = the block, detail = the field */
 
+/* ACK detail of a refused CFG_EST beyond the ht_dcm_param_id_t values */
+#define HIL_EST_BAD_DIVIDER 0x40u /* control_divider * CFG_ALT rate_hz != imu_rate_hz */
+#define HIL_EST_BAD_TIMEOUT 0x41u /* imu_timeout_samples out of [1, 10000] */
+
 /* NAK reasons */
-#define HIL_NAK_NOT_STARTED 1u /* SENSORS before a successful START */
-#define HIL_NAK_BAD_FIELD   2u /* reserved flag bits set */
+#define HIL_NAK_NOT_STARTED 1u /* STEP or SENSORS before a successful START */
+#define HIL_NAK_BAD_FIELD   2u /* reserved bits set, a count out of range */
+#define HIL_NAK_SEQUENCE                                                                           \
+    3u /* SENSORS does not close the open step: no STEP, another                                   \
+          seq, missing TRUTH, or not imu_count - 1 IMU frames */
 
-/* The navigation solution a SENSORS frame carries (protocol version 2). */
+/* What a STEP frame carries, in the firmware's formats. */
 typedef struct {
-    q14_t down_q14[3];       /* DCM bottom row */
-    q11_t gyro_q11_rad_s[3]; /* body rates */
-    int16_t airspeed_cm_s;
-} hil_attitude_t;
+    uint32_t seq;
+    uint8_t flags;           /* HIL_SF_* */
+    uint8_t imu_count;       /* samples in this step, [0, HIL_IMU_MAX]; 0: one control period
+                                of calls without a sample (as the SIL host board) */
+    uint8_t fresh;           /* HIL_FRESH_* as received (parse only; the writer takes
+                                the sensors' flags) */
+    board_sensors_t sensors; /* gps, airspeed, baro and their fresh flags; imu ignored */
+    fw_guided_t guided;      /* the flags' bits are taken from flags */
+} hil_step_t;
 
-/* The step's fixed-point inputs: the solution and the scenario's command. */
+/* What a STATE frame carries (the estimate and the solution flown). */
 typedef struct {
-    hil_attitude_t imu;
-    int32_t altitude_cm;
-    int32_t climb_cm_s;
-    q11_t turn_rate_rad_s;
-    q16_t pitch_ratio;
-    int32_t altitude_cmd_cm;
-    int16_t airspeed_cmd_cm_s;
-    q14_t throttle;
-    uint8_t flags; /* HIL_SF_* */
-} hil_step_in_t;
-
-typedef struct {
-    uint16_t pulse_us[HIL_OUT_CHANNELS]; /* from the output stage */
-    q14_t throttle;
-    q16_t pitch_cmd;
-    ht_output_t law;
-    uint8_t servo_clamped;
-} hil_step_out_t;
+    uint32_t seq;
+    uint8_t flags; /* HIL_ST_* */
+    ht_dcm_output_t est;
+    fw_nav_t nav;
+} hil_state_t;
 
 typedef struct {
     /* staged by the CFG_* frames, checked and put in force at START */
     fw_config_t cfg;
-    uint8_t have; /* bit per CFG block received: 1 law, 2 alt, 4 spd, 8 out */
+    uint8_t have; /* bit per CFG block received: 1 law, 2 alt, 4 spd, 8 out, 16 est */
     /* in force after START */
     fw_t fw;
     uint8_t started;
+    /* the open control step (STEP received, SENSORS not yet) */
+    uint8_t step_open;
+    uint8_t step_broken; /* an IMU or TRUTH frame out of order: SENSORS is refused */
+    uint8_t step_truth;  /* TRUTH received for the open step */
+    uint8_t step_ran;    /* a call of the open step ran the control chain */
+    uint8_t step_imu;    /* IMU frames stepped in the open step */
+    hil_step_t step;
     /* link */
     uint8_t rx_len[HIL_ID_HOST_COUNT]; /* the decoder's table: expected lengths */
     hil_decoder_t rx;
     uint16_t naks;
     uint32_t steps;
     /* the step's working structs (kept off the stack; also telemetry) */
-    hil_step_in_t in;
-    hil_step_out_t res;
     fw_inputs_t fw_in;
-    fw_nav_t nav;
-    fw_guided_t guided;
+    fw_nav_t truth;
     fw_output_t fw_out;
+    hil_state_t state;
     uint8_t frame[HIL_FRAME_MAX];
     uint8_t payload[HIL_PAYLOAD_MAX];
 } hil_fw_t;
@@ -144,11 +174,18 @@ void hil_fw_send_ready(hil_fw_t *h);
 /* Feed one received byte; a completed good frame is acted on (and answered). */
 void hil_fw_on_byte(hil_fw_t *h, uint8_t byte);
 
-/* The control step alone (no link): exposed for the host test. */
-void hil_fw_step(hil_fw_t *h, const hil_step_in_t *in, hil_step_out_t *o);
-
-/* Payload parsers and writers, shared with the host test. */
-void hil_sensors_parse(const uint8_t *p, uint32_t *seq, hil_step_in_t *in);
-void hil_sensors_write(uint8_t *p, uint32_t seq, const hil_step_in_t *in);
+/* Payload writers and parsers (the host test builds its frames with the
+ * writers; the parsers are the firmware's). */
+void hil_step_write(uint8_t *p, const hil_step_t *s);
+void hil_step_parse(const uint8_t *p, hil_step_t *s);
+void hil_truth_write(uint8_t *p, const fw_nav_t *n);
+void hil_truth_parse(const uint8_t *p, fw_nav_t *n);
+/* IMU (24 bytes) and SENSORS (seq, then the sample: 28 bytes) */
+void hil_imu_write(uint8_t *p, const ht_imu_sample_t *s);
+void hil_imu_parse(const uint8_t *p, ht_imu_sample_t *s);
+void hil_state_write(uint8_t *p, const hil_state_t *s);
+void hil_state_parse(const uint8_t *p, hil_state_t *s);
+/* CFG_EST from / into a configuration (dcm, control_divider, imu_timeout_samples) */
+void hil_cfg_est_write(uint8_t *p, const fw_config_t *c);
 
 #endif /* HT_HIL_FW_H */

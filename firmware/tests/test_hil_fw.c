@@ -19,6 +19,7 @@
 #include "sil_board.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static hil_fw_t fw;
@@ -56,16 +57,24 @@ int hil_link_poll(uint8_t *byte)
 
 /* --- the host's side of the link ----------------------------------------- */
 
-static uint8_t fw_len[0xA1];
+static uint8_t fw_len[0xA2];
 static hil_decoder_t host_rx;
 
-/* Decode everything the firmware sent since the last call; returns the
- * number of frames, the last one stays in host_rx. */
+/* Decode everything the firmware sent since the last call into got_id /
+ * got (at most 16 frames); returns the number of frames. */
+static uint8_t got_id[16];
+static uint8_t got[16][HIL_PAYLOAD_MAX];
+
 static int replies(void)
 {
     int n = 0;
     for (size_t i = 0; i < sent_n; ++i) {
-        n += hil_decoder_push(&host_rx, sent[i]);
+        if (hil_decoder_push(&host_rx, sent[i])) {
+            TEST_ASSERT_TRUE(n < 16);
+            got_id[n] = host_rx.id;
+            memcpy(got[n], host_rx.payload, HIL_PAYLOAD_MAX);
+            n++;
+        }
     }
     sent_n = 0;
     return n;
@@ -210,15 +219,20 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
         hil_put_u16(&r[12], ch->failsafe_us);
     }
     push_frame(HIL_ID_CFG_OUT, p, HIL_LEN_CFG_OUT);
+
+    /* the estimator and the IMU timing (protocol 3), from the SIL board's own
+     * converted configuration */
+    hil_cfg_est_write(p, &sil.cfg);
+    push_frame(HIL_ID_CFG_EST, p, HIL_LEN_CFG_EST);
 }
 
 static void expect_ack(uint8_t status, uint8_t block, uint8_t detail)
 {
     TEST_ASSERT_EQUAL_INT(1, replies());
-    TEST_ASSERT_EQUAL_HEX8(HIL_ID_ACK, host_rx.id);
-    TEST_ASSERT_EQUAL_UINT8(status, host_rx.payload[0]);
-    TEST_ASSERT_EQUAL_HEX8(block, host_rx.payload[1]);
-    TEST_ASSERT_EQUAL_UINT8(detail, host_rx.payload[2]);
+    TEST_ASSERT_EQUAL_HEX8(HIL_ID_ACK, got_id[0]);
+    TEST_ASSERT_EQUAL_UINT8(status, got[0][0]);
+    TEST_ASSERT_EQUAL_HEX8(block, got[0][1]);
+    TEST_ASSERT_EQUAL_UINT8(detail, got[0][2]);
 }
 
 static void start_both(void)
@@ -243,6 +257,7 @@ void setUp(void)
     fw_len[HIL_ID_NAK] = HIL_LEN_NAK;
     fw_len[HIL_ID_ACK] = HIL_LEN_ACK;
     fw_len[HIL_ID_OUTPUT] = HIL_LEN_OUTPUT;
+    fw_len[HIL_ID_STATE] = HIL_LEN_STATE;
     const hil_msg_table_t t = {fw_len, (uint8_t)sizeof fw_len};
     hil_decoder_init(&host_rx, t);
 }
@@ -268,191 +283,343 @@ static void test_ready_banner_and_hello(void)
     TEST_ASSERT_EQUAL_UINT16(1u, hil_get_u16(&host_rx.payload[6])); /* frames_ok */
 }
 
-/* The step's fixed-point inputs as the test draws them. */
+/* One control step's inputs in the firmware's formats, as the test draws
+ * them: the STEP frame's contents, the samples, the truth solution, and the
+ * heading the truth's nose direction comes from. */
 typedef struct {
-    hil_attitude_t imu;
-    int32_t altitude_cm, climb_cm_s;
-} fx_sensors_t;
+    hil_step_t step;
+    ht_imu_sample_t imu[HIL_IMU_MAX];
+    fw_nav_t truth;
+    double heading_rad;
+} fx_step_t;
 
-typedef struct {
-    q11_t turn_rate_rad_s;
-    q16_t pitch_ratio;
-    int32_t altitude_cm;
-    int16_t airspeed_cm_s;
-    q14_t throttle;
-    uint8_t altitude_hold, speed_hold, inverted, pitch_mode;
-} fx_command_t;
-
-static void random_inputs(uint64_t *rng, fx_sensors_t *s, fx_command_t *c, int wild)
+static int16_t rnd16(uint64_t *rng)
 {
-    memset(s, 0, sizeof *s);
-    memset(c, 0, sizeof *c);
-    if (wild) { /* anything at all: every branch and saturation */
-        for (int i = 0; i < 3; ++i) {
-            s->imu.down_q14[i] = (int16_t)ts_rng_next(rng);
-            s->imu.gyro_q11_rad_s[i] = (int16_t)ts_rng_next(rng);
+    return (int16_t)(ts_rng_next(rng) & 0xFFFFu);
+}
+
+static int32_t rnd32(uint64_t *rng)
+{
+    return (int32_t)(uint32_t)ts_rng_next(rng);
+}
+
+static int32_t rnd_in(uint64_t *rng, double lo, double hi)
+{
+    return (int32_t)llround(ts_uniform(rng, lo, hi));
+}
+
+/* wild: anything at all (every branch and saturation); else flying: gravity
+ * on the accelerometers, modest rates, a GPS over Switzerland. use_truth:
+ * the step flies on the truth solution. */
+static void random_step(uint64_t *rng, uint32_t seq, int wild, int use_truth, fx_step_t *x)
+{
+    memset(x, 0, sizeof *x);
+    hil_step_t *s = &x->step;
+    board_sensors_t *b = &s->sensors;
+    fw_guided_t *g = &s->guided;
+    s->seq = seq;
+    const uint64_t pick = ts_rng_next(rng) % 16u;
+    /* mostly the divider (3); sometimes none, or a count off the divider */
+    s->imu_count = (uint8_t)(pick < 11u ? 3u : (pick < 13u ? 0u : ts_rng_next(rng) % 8u));
+    const double roll = ts_uniform(rng, -3.1, 3.1), pitch = ts_uniform(rng, -1.2, 1.2);
+    for (unsigned i = 0; i < s->imu_count; ++i) {
+        ht_imu_sample_t *m = &x->imu[i];
+        for (int k = 0; k < 3; ++k) {
+            m->gyro_rad_s[k] = wild ? rnd32(rng) : rnd_in(rng, -0.5 * 65536.0, 0.5 * 65536.0);
+            m->accel_g[k] = wild ? rnd32(rng) : rnd_in(rng, -0.05 * 65536.0, 0.05 * 65536.0);
         }
-        s->imu.airspeed_cm_s = (int16_t)ts_rng_next(rng);
-        s->altitude_cm = (int32_t)(ts_rng_next(rng) % 2000000u) - 1000000;
-        s->climb_cm_s = (int32_t)(ts_rng_next(rng) % 20000u) - 10000;
-    } else { /* flying: a unit tilt row, modest rates */
-        const double roll = ts_uniform(rng, -3.1, 3.1), pitch = ts_uniform(rng, -1.2, 1.2);
-        s->imu.down_q14[0] = (int16_t)llround(-sin(roll) * cos(pitch) * 16384.0);
-        s->imu.down_q14[1] = (int16_t)llround(-sin(pitch) * 16384.0);
-        s->imu.down_q14[2] = (int16_t)llround(cos(roll) * cos(pitch) * 16384.0);
-        for (int i = 0; i < 3; ++i) {
-            s->imu.gyro_q11_rad_s[i] = (int16_t)llround(ts_uniform(rng, -1.0, 1.0) * 2048.0);
+        if (!wild) { /* specific force of level, unaccelerated flight: -down */
+            m->accel_g[0] += (int32_t)llround(sin(roll) * cos(pitch) * 65536.0);
+            m->accel_g[1] += (int32_t)llround(sin(pitch) * 65536.0);
+            m->accel_g[2] += (int32_t)llround(-cos(roll) * cos(pitch) * 65536.0);
         }
-        s->imu.airspeed_cm_s = (int16_t)llround(ts_uniform(rng, 2000.0, 15000.0));
-        s->altitude_cm = 150000 + (int32_t)llround(ts_uniform(rng, -3000.0, 3000.0));
-        s->climb_cm_s = (int32_t)llround(ts_uniform(rng, -1000.0, 1000.0));
     }
-    c->turn_rate_rad_s = (int16_t)llround(ts_uniform(rng, -0.3, 0.3) * 2048.0);
-    c->pitch_ratio = (int32_t)llround(ts_uniform(rng, -0.3, 0.3) * 65536.0);
-    c->altitude_cm = 150000 + (int32_t)llround(ts_uniform(rng, -2000.0, 2000.0));
-    c->airspeed_cm_s = (int16_t)llround(ts_uniform(rng, 3000.0, 12000.0));
-    c->throttle = (int16_t)llround(ts_uniform(rng, 0.0, 1.0) * 16384.0);
     const uint64_t f = ts_rng_next(rng);
-    c->altitude_hold = (uint8_t)(f & 1u);
-    c->speed_hold = (uint8_t)((f >> 1) & 1u);
-    c->inverted = (uint8_t)((f >> 2) & 1u);
-    c->pitch_mode = (uint8_t)((f >> 3) & 1u);
+    b->gps.fix = (uint8_t)(wild ? (f & 3u) : ((f & 7u) != 0u ? 3u : 0u));
+    b->gps.fresh = (uint8_t)((f >> 3) & 1u);
+    b->airspeed_fresh = (uint8_t)((f >> 4) & 1u);
+    b->baro_fresh = (uint8_t)((f >> 5) & 1u);
+    b->gps.lat_e7 = wild ? rnd_in(rng, -9e8, 9e8) : rnd_in(rng, 4.70e8, 4.71e8);
+    b->gps.lon_e7 = wild ? rnd_in(rng, -1.8e9, 1.8e9) : rnd_in(rng, 8.0e7, 8.1e7);
+    b->gps.alt_cm = wild ? rnd32(rng) : rnd_in(rng, 120000.0, 180000.0);
+    for (int k = 0; k < 3; ++k) {
+        b->gps.vel_ned_cm_s[k] = wild ? rnd32(rng) : rnd_in(rng, -6000.0, 6000.0);
+    }
+    b->airspeed_cm_s = wild ? rnd16(rng) : (int16_t)rnd_in(rng, 2000.0, 15000.0);
+    b->baro_alt_cm = wild ? rnd32(rng) : rnd_in(rng, 120000.0, 180000.0);
+    g->turn_rate_rad_s = (int16_t)rnd_in(rng, -0.3 * 2048.0, 0.3 * 2048.0);
+    g->pitch_ratio = rnd_in(rng, -0.3 * 65536.0, 0.3 * 65536.0);
+    g->altitude_cm = 150000 + rnd_in(rng, -2000.0, 2000.0);
+    g->airspeed_cm_s = (int16_t)rnd_in(rng, 3000.0, 12000.0);
+    g->throttle = (int16_t)rnd_in(rng, 0.0, 16384.0);
+    s->flags = (uint8_t)((f >> 6) & 0x0Fu) | (use_truth ? HIL_SF_USE_TRUTH : 0u);
+    if (use_truth) {
+        fw_nav_t *n = &x->truth;
+        n->down_q14[0] = (int16_t)llround(-sin(roll) * cos(pitch) * 16384.0);
+        n->down_q14[1] = (int16_t)llround(-sin(pitch) * 16384.0);
+        n->down_q14[2] = (int16_t)llround(cos(roll) * cos(pitch) * 16384.0);
+        for (int k = 0; k < 3; ++k) {
+            n->gyro_q11_rad_s[k] = wild ? rnd16(rng) : (int16_t)rnd_in(rng, -2048.0, 2048.0);
+            if (wild) {
+                n->down_q14[k] = rnd16(rng);
+            }
+        }
+        n->airspeed_cm_s = wild ? rnd16(rng) : (int16_t)rnd_in(rng, 2000.0, 15000.0);
+        n->altitude_cm = wild ? rnd_in(rng, -1e6, 1e6) : rnd_in(rng, 147000.0, 153000.0);
+        n->climb_cm_s = rnd_in(rng, -1000.0, 1000.0);
+        n->north_cm = rnd_in(rng, -1e7, 1e7);
+        n->east_cm = rnd_in(rng, -1e7, 1e7);
+        n->vel_north_cm_s = rnd_in(rng, -6000.0, 6000.0);
+        n->vel_east_cm_s = rnd_in(rng, -6000.0, 6000.0);
+        x->heading_rad = ts_uniform(rng, -3.2, 3.2);
+        n->heading_north = (int16_t)llround(cos(x->heading_rad) * 16384.0);
+        n->heading_east = (int16_t)llround(sin(x->heading_rad) * 16384.0);
+    }
 }
 
-static void to_hil(const fx_sensors_t *s, const fx_command_t *c, hil_step_in_t *in)
-{
-    memset(in, 0, sizeof *in);
-    in->imu = s->imu;
-    in->altitude_cm = s->altitude_cm;
-    in->climb_cm_s = s->climb_cm_s;
-    in->turn_rate_rad_s = c->turn_rate_rad_s;
-    in->pitch_ratio = c->pitch_ratio;
-    in->altitude_cmd_cm = c->altitude_cm;
-    in->airspeed_cmd_cm_s = c->airspeed_cm_s;
-    in->throttle = c->throttle;
-    in->flags =
-        (uint8_t)((c->altitude_hold ? HIL_SF_ALTITUDE_HOLD : 0u) |
-                  (c->speed_hold ? HIL_SF_SPEED_HOLD : 0u) | (c->inverted ? HIL_SF_INVERTED : 0u) |
-                  (c->pitch_mode ? HIL_SF_TILT_CROSS : 0u));
-}
-
-/* The same inputs as the SIL harness gives them: doubles that convert back
- * to exactly these fixed-point values, the truth solution, one control
- * period of (zero) IMU samples. */
-static void sil_step(const fx_sensors_t *s, const fx_command_t *c)
+/* The same step as the SIL harness gives it: doubles that the host board
+ * converts back to exactly these integers. */
+static void sil_step(const fx_step_t *x, sil_actuators_t *a)
 {
     static sil_sensors_t ss;
     static sil_command_t sc;
-    static sil_actuators_t a;
     memset(&ss, 0, sizeof ss);
     memset(&sc, 0, sizeof sc);
-    ss.imu_count = 3; /* imu_rate_hz / control_rate_hz */
-    ss.use_truth = 1;
-    ss.dcm_x = s->imu.down_q14[0] / 16384.0;
-    ss.dcm_y = s->imu.down_q14[1] / 16384.0;
-    ss.dcm_z = s->imu.down_q14[2] / 16384.0;
-    ss.gyro_x = s->imu.gyro_q11_rad_s[0] / 2048.0;
-    ss.gyro_y = s->imu.gyro_q11_rad_s[1] / 2048.0;
-    ss.gyro_z = s->imu.gyro_q11_rad_s[2] / 2048.0;
-    ss.airspeed_m_s = s->imu.airspeed_cm_s / 100.0;
-    ss.altitude_m = s->altitude_cm / 100.0;
-    ss.climb_m_s = s->climb_cm_s / 100.0;
-    sc.turn_rate_rad_s = c->turn_rate_rad_s / 2048.0;
-    sc.pitch_ratio = c->pitch_ratio / 65536.0;
-    sc.altitude_m = c->altitude_cm / 100.0;
-    sc.airspeed_m_s = c->airspeed_cm_s / 100.0;
-    sc.throttle = c->throttle / 16384.0;
-    sc.altitude_hold = c->altitude_hold;
-    sc.speed_hold = c->speed_hold;
-    sc.inverted = c->inverted;
-    sc.pitch_mode = c->pitch_mode;
-    sil_board_step(&sil, &ss, &sc, &a);
-    TEST_ASSERT_EQUAL_INT(1, a.control_ran);
-}
-
-/* One step on both boards, the firmware's through frames; compare all. */
-static void step_both(uint32_t seq, const fx_sensors_t *s, const fx_command_t *c)
-{
-    sil_step(s, c);
-    const fw_output_t o = sil.out;
-    hil_step_in_t in;
-    to_hil(s, c, &in);
-    uint8_t p[HIL_LEN_SENSORS];
-    hil_sensors_write(p, seq, &in);
-    push_frame(HIL_ID_SENSORS, p, HIL_LEN_SENSORS);
-    TEST_ASSERT_EQUAL_INT(1, replies());
-    TEST_ASSERT_EQUAL_HEX8(HIL_ID_OUTPUT, host_rx.id);
-    const uint8_t *r = host_rx.payload;
-    TEST_ASSERT_EQUAL_UINT32(seq, (uint32_t)hil_get_i32(&r[0]));
-    for (int i = 0; i < SIL_CH_COUNT; ++i) {
-        TEST_ASSERT_EQUAL_UINT16(o.pulse_us[i], hil_get_u16(&r[4 + 2 * i]));  /* read back */
-        TEST_ASSERT_EQUAL_UINT16(o.pulse_us[i], hil_get_u16(&r[12 + 2 * i])); /* computed */
-        TEST_ASSERT_EQUAL_UINT16(o.pulse_us[i], fake_board.committed_us[i]);
+    const hil_step_t *s = &x->step;
+    const board_sensors_t *b = &s->sensors;
+    ss.imu_count = s->imu_count;
+    for (unsigned i = 0; i < s->imu_count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            ss.gyro_rad_s[i][k] = x->imu[i].gyro_rad_s[k] / 65536.0;
+            ss.accel_g[i][k] = x->imu[i].accel_g[k] / 65536.0;
+        }
     }
-    TEST_ASSERT_EQUAL_INT16(o.law.aileron, hil_get_i16(&r[20]));
-    TEST_ASSERT_EQUAL_INT16(o.law.elevator, hil_get_i16(&r[22]));
-    TEST_ASSERT_EQUAL_INT16(o.law.rudder, hil_get_i16(&r[24]));
-    TEST_ASSERT_EQUAL_INT32(o.pitch_cmd, hil_get_i32(&r[26]));
-    TEST_ASSERT_EQUAL_INT16(o.throttle, hil_get_i16(&r[30]));
-    TEST_ASSERT_EQUAL_INT16(o.law.turn_rate_used_rad_s, hil_get_i16(&r[32]));
-    TEST_ASSERT_EQUAL_INT16(o.law.roll_error, hil_get_i16(&r[34]));
-    TEST_ASSERT_EQUAL_INT16(o.law.pitch_error, hil_get_i16(&r[36]));
-    TEST_ASSERT_EQUAL_UINT16((uint16_t)(o.law.flags | (o.servo_clamped ? 0x100u : 0u)),
-                             hil_get_u16(&r[38]));
-    /* the whole law output, and the holds' states, not only what is sent */
-    TEST_ASSERT_EQUAL_MEMORY(&o.law, &fw.res.law, sizeof o.law);
-    TEST_ASSERT_EQUAL_MEMORY(&o.law_in, &fw.fw_out.law_in, sizeof o.law_in);
-    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.modes_state.alt, &fw.fw.modes_state.alt,
-                             sizeof fw.fw.modes_state.alt);
-    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.modes_state.speed, &fw.fw.modes_state.speed,
-                             sizeof fw.fw.modes_state.speed);
-    TEST_ASSERT_EQUAL_UINT8(sil.fw.guard_state.engaged, fw.fw.guard_state.engaged);
+    ss.gps_fresh = b->gps.fresh;
+    ss.gps_fix = b->gps.fix;
+    ss.gps_lat_deg = b->gps.lat_e7 / 1e7;
+    ss.gps_lon_deg = b->gps.lon_e7 / 1e7;
+    ss.gps_alt_m = b->gps.alt_cm / 100.0;
+    for (int k = 0; k < 3; ++k) {
+        ss.gps_vel_ned_m_s[k] = b->gps.vel_ned_cm_s[k] / 100.0;
+    }
+    ss.airspeed_fresh = b->airspeed_fresh;
+    ss.pitot_m_s = b->airspeed_cm_s / 100.0;
+    ss.baro_fresh = b->baro_fresh;
+    ss.baro_alt_m = b->baro_alt_cm / 100.0;
+    ss.use_truth = (s->flags & HIL_SF_USE_TRUTH) != 0u;
+    const fw_nav_t *n = &x->truth;
+    ss.dcm_x = n->down_q14[0] / 16384.0;
+    ss.dcm_y = n->down_q14[1] / 16384.0;
+    ss.dcm_z = n->down_q14[2] / 16384.0;
+    ss.gyro_x = n->gyro_q11_rad_s[0] / 2048.0;
+    ss.gyro_y = n->gyro_q11_rad_s[1] / 2048.0;
+    ss.gyro_z = n->gyro_q11_rad_s[2] / 2048.0;
+    ss.airspeed_m_s = n->airspeed_cm_s / 100.0;
+    ss.altitude_m = n->altitude_cm / 100.0;
+    ss.climb_m_s = n->climb_cm_s / 100.0;
+    ss.north_m = n->north_cm / 100.0;
+    ss.east_m = n->east_cm / 100.0;
+    ss.vel_north_m_s = n->vel_north_cm_s / 100.0;
+    ss.vel_east_m_s = n->vel_east_cm_s / 100.0;
+    ss.heading_rad = x->heading_rad;
+    const fw_guided_t *g = &s->guided;
+    sc.turn_rate_rad_s = g->turn_rate_rad_s / 2048.0;
+    sc.pitch_ratio = g->pitch_ratio / 65536.0;
+    sc.altitude_m = g->altitude_cm / 100.0;
+    sc.airspeed_m_s = g->airspeed_cm_s / 100.0;
+    sc.throttle = g->throttle / 16384.0;
+    sc.altitude_hold = (s->flags & HIL_SF_ALTITUDE_HOLD) != 0u;
+    sc.speed_hold = (s->flags & HIL_SF_SPEED_HOLD) != 0u;
+    sc.inverted = (s->flags & HIL_SF_INVERTED) != 0u;
+    sc.pitch_mode = (s->flags & HIL_SF_TILT_CROSS) != 0u;
+    sil_board_step(&sil, &ss, &sc, a);
 }
 
-static void test_same_step_as_the_sil_board(void)
+/* The host's frames of one step: STEP, TRUTH, the IMU frames, SENSORS. */
+static void push_step(const fx_step_t *x)
+{
+    uint8_t p[HIL_PAYLOAD_MAX];
+    const hil_step_t *s = &x->step;
+    hil_step_write(p, s);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    if ((s->flags & HIL_SF_USE_TRUTH) != 0u) {
+        hil_truth_write(p, &x->truth);
+        push_frame(HIL_ID_TRUTH, p, HIL_LEN_TRUTH);
+    }
+    for (unsigned i = 0; i + 1u < s->imu_count; ++i) {
+        hil_imu_write(p, &x->imu[i]);
+        push_frame(HIL_ID_IMU, p, HIL_LEN_IMU);
+    }
+    memset(p, 0, sizeof p);
+    hil_put_i32(&p[0], (int32_t)s->seq);
+    if (s->imu_count > 0u) {
+        hil_imu_write(&p[4], &x->imu[s->imu_count - 1u]);
+    }
+    push_frame(HIL_ID_SENSORS, p, HIL_LEN_SENSORS);
+}
+
+/* One step on both boards, the firmware's through frames; compare all.
+ * Returns 1 when the step ran the control chain. */
+static int step_both(const fx_step_t *x)
+{
+    static sil_actuators_t a;
+    sil_step(x, &a);
+    const fw_output_t *o = &sil.out;
+    const uint32_t commits = fake_board.commits;
+    push_step(x);
+    TEST_ASSERT_EQUAL_INT(2, replies());
+    TEST_ASSERT_EQUAL_HEX8(HIL_ID_STATE, got_id[0]);
+    TEST_ASSERT_EQUAL_HEX8(HIL_ID_OUTPUT, got_id[1]);
+    /* the firmware step's whole output and state, not only what is sent */
+    TEST_ASSERT_EQUAL_MEMORY(o, &fw.fw_out, sizeof *o);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.dcm_state, &fw.fw.dcm_state, sizeof sil.fw.dcm_state);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.nav, &fw.fw.nav, sizeof sil.fw.nav);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.modes_state, &fw.fw.modes_state, sizeof sil.fw.modes_state);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.fw.home, &fw.fw.home, sizeof sil.fw.home);
+    TEST_ASSERT_EQUAL_UINT32(sil.fw.samples, fw.fw.samples);
+    TEST_ASSERT_EQUAL_UINT32(sil.fw.control_steps, fw.fw.control_steps);
+    TEST_ASSERT_EQUAL_UINT16(sil.fw.imu_age, fw.fw.imu_age);
+    TEST_ASSERT_EQUAL_UINT8(sil.fw.guard_state.engaged, fw.fw.guard_state.engaged);
+
+    /* STATE: what the SIL's actuators carry of the estimate and the solution */
+    hil_state_t st;
+    hil_state_parse(got[0], &st);
+    TEST_ASSERT_EQUAL_UINT32(x->step.seq, st.seq);
+    TEST_ASSERT_EQUAL_UINT8((uint8_t)((a.control_ran ? HIL_ST_CONTROL_RAN : 0u) |
+                                      (a.control_ran && o->failsafe ? HIL_ST_FAILSAFE : 0u) |
+                                      (a.guard_engaged ? HIL_ST_GUARD_ENGAGED : 0u)),
+                            (uint8_t)(st.flags & (a.control_ran ? 0xFFu : HIL_ST_CONTROL_RAN)));
+    if (!a.control_ran) {
+        return 0; /* the SIL answers zeros: nothing more to compare */
+    }
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_x, st.est.r[2][0] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_y, st.est.r[2][1] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_z, st.est.r[2][2] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_roll_deg, st.est.roll_cdeg / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_pitch_deg, st.est.pitch_cdeg / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.est_yaw_deg, st.est.yaw_cdeg / 100.0);
+    for (int k = 0; k < 3; ++k) {
+        TEST_ASSERT_EQUAL_DOUBLE(a.est_bias_rad_s[k], st.est.gyro_bias_rad_s[k] / 65536.0);
+    }
+    TEST_ASSERT_EQUAL_INT32(a.est_flags, st.est.flags);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_x, st.nav.down_q14[0] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_y, st.nav.down_q14[1] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_z, st.nav.down_q14[2] / 16384.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_airspeed_m_s, st.nav.airspeed_cm_s / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_altitude_m, st.nav.altitude_cm / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_climb_m_s, st.nav.climb_cm_s / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_north_m, st.nav.north_cm / 100.0);
+    TEST_ASSERT_EQUAL_DOUBLE(a.nav_east_m, st.nav.east_cm / 100.0);
+
+    /* OUTPUT: the pulses (read back and computed) and the intermediates */
+    const uint8_t *r = got[1];
+    TEST_ASSERT_EQUAL_UINT32(x->step.seq, (uint32_t)hil_get_i32(&r[0]));
+    TEST_ASSERT_EQUAL_UINT32(commits + 1u, fake_board.commits);
+    for (int i = 0; i < SIL_CH_COUNT; ++i) {
+        TEST_ASSERT_EQUAL_UINT16(o->pulse_us[i], hil_get_u16(&r[4 + 2 * i]));  /* read back */
+        TEST_ASSERT_EQUAL_UINT16(o->pulse_us[i], hil_get_u16(&r[12 + 2 * i])); /* computed */
+        TEST_ASSERT_EQUAL_UINT16(o->pulse_us[i], fake_board.committed_us[i]);
+    }
+    TEST_ASSERT_EQUAL_INT16(o->law.aileron, hil_get_i16(&r[20]));
+    TEST_ASSERT_EQUAL_INT16(o->law.elevator, hil_get_i16(&r[22]));
+    TEST_ASSERT_EQUAL_INT16(o->law.rudder, hil_get_i16(&r[24]));
+    TEST_ASSERT_EQUAL_INT32(o->pitch_cmd, hil_get_i32(&r[26]));
+    TEST_ASSERT_EQUAL_INT16(o->throttle, hil_get_i16(&r[30]));
+    TEST_ASSERT_EQUAL_INT16(o->law.turn_rate_used_rad_s, hil_get_i16(&r[32]));
+    TEST_ASSERT_EQUAL_INT16(o->law.roll_error, hil_get_i16(&r[34]));
+    TEST_ASSERT_EQUAL_INT16(o->law.pitch_error, hil_get_i16(&r[36]));
+    TEST_ASSERT_EQUAL_UINT16((uint16_t)(o->law.flags | (o->servo_clamped ? 0x100u : 0u)),
+                             hil_get_u16(&r[38]));
+    return 1;
+}
+
+static void start_checks(void)
 {
     start_both();
-    /* the clamped initial integrators */
-    const ht_alt_hold_state_t *sa = &sil.fw.modes_state.alt, *fa = &fw.fw.modes_state.alt;
-    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[0], fa->integral_q20[0]);
-    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[1], fa->integral_q20[1]);
+    /* the configuration in force is the SIL's, field for field */
+    TEST_ASSERT_EQUAL_MEMORY(&sil.cfg.dcm, &fw.cfg.dcm, sizeof sil.cfg.dcm);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.cfg.law, &fw.cfg.law, sizeof sil.cfg.law);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.cfg.modes, &fw.cfg.modes, sizeof sil.cfg.modes);
+    TEST_ASSERT_EQUAL_MEMORY(&sil.cfg.guard, &fw.cfg.guard, sizeof sil.cfg.guard);
+    TEST_ASSERT_EQUAL_UINT16(sil.cfg.control_divider, fw.cfg.control_divider);
+    TEST_ASSERT_EQUAL_UINT16(sil.cfg.imu_timeout_samples, fw.cfg.imu_timeout_samples);
+    TEST_ASSERT_EQUAL_INT32(sil.cfg.alt_integral_q20[0], fw.cfg.alt_integral_q20[0]);
+    TEST_ASSERT_EQUAL_INT32(sil.cfg.alt_integral_q20[1], fw.cfg.alt_integral_q20[1]);
     TEST_ASSERT_EQUAL_UINT8(sil.cfg.out.count, fw.cfg.out.count); /* the channels in use */
     TEST_ASSERT_EQUAL_MEMORY(sil.cfg.out.ch, fw.cfg.out.ch,
                              sil.cfg.out.count * sizeof(os_channel_t));
+    TEST_ASSERT_EQUAL_UINT16(3u, fw.cfg.control_divider);
+    TEST_ASSERT_EQUAL_UINT16(120u, fw.cfg.dcm.imu_rate_hz);
+    /* the clamped initial integrators, the controllers */
+    const ht_alt_hold_state_t *sa = &sil.fw.modes_state.alt, *fa = &fw.fw.modes_state.alt;
+    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[0], fa->integral_q20[0]);
+    TEST_ASSERT_EQUAL_INT32(sa->integral_q20[1], fa->integral_q20[1]);
     TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[0], &fw.fw.law[0], sizeof sil.fw.law[0]);
     TEST_ASSERT_EQUAL_MEMORY(&sil.fw.law[1], &fw.fw.law[1], sizeof sil.fw.law[1]);
-    uint64_t rng = 2024;
-    fx_sensors_t s;
-    fx_command_t c;
-    for (uint32_t k = 0; k < 20000u; ++k) {
-        random_inputs(&rng, &s, &c, (k % 4u) == 3u);
-        step_both(k, &s, &c);
+}
+
+/* steps, seed, use_truth: 0 never, 1 always, 2 a random half */
+static void run_steps(uint32_t steps, uint64_t rng, int truth)
+{
+    start_checks();
+    static fx_step_t x;
+    uint32_t ran = 0u, ran_mid = 0u, aligned = 0u, aided = 0u;
+    for (uint32_t k = 0; k < steps; ++k) {
+        const int use_truth = (truth == 2) ? (int)(ts_rng_next(&rng) & 1u) : truth;
+        random_step(&rng, k, (k % 8u) == 7u, use_truth, &x);
+        const int r = step_both(&x);
+        ran += (uint32_t)r;
+        ran_mid += (r != 0 && sil.out.control_ran == 0u) ? 1u : 0u; /* on an IMU frame */
+        aligned += (fw.fw.dcm_state.flags & HT_DCM_F_ALIGNED) != 0u;
+        aided += (fw.fw.dcm_state.flags & HT_DCM_F_YAW_AIDED) != 0u;
     }
-    TEST_ASSERT_EQUAL_UINT32(20000u, fw.steps);
+    TEST_ASSERT_EQUAL_UINT32(steps, fw.steps);
     TEST_ASSERT_EQUAL_UINT16(0u, fw.rx.stats.bad_crc);
+    TEST_ASSERT_EQUAL_UINT16(0u, fw.naks);
+    /* the sweep reached what it is for: control steps, an aligned and aided
+     * estimator, and steps without control (imu_count off the divider) */
+    printf("%u steps: control ran %u (%u on an IMU frame), aligned %u, yaw aided %u\n", steps, ran,
+           ran_mid, aligned, aided);
+    TEST_ASSERT_TRUE(ran > steps / 2u && ran < steps);
+    TEST_ASSERT_TRUE(aligned > steps / 2u);
+    TEST_ASSERT_TRUE(aided > 0u);
+}
+
+static void test_same_step_as_the_sil_board_estimate(void)
+{
+    run_steps(6000u, 2024u, 0);
+}
+
+static void test_same_step_as_the_sil_board_truth(void)
+{
+    run_steps(6000u, 2025u, 1);
+}
+
+static void test_same_step_as_the_sil_board_mixed(void)
+{
+    run_steps(3000u, 2026u, 2);
 }
 
 static void test_bad_frames_are_never_acted_on(void)
 {
-    start_both();
+    start_checks();
     uint64_t rng = 5;
-    fx_sensors_t s;
-    fx_command_t c;
-    random_inputs(&rng, &s, &c, 0);
-    step_both(0, &s, &c);
-    const hil_fw_t before = fw;
+    static fx_step_t x;
+    random_step(&rng, 0u, 0, 0, &x);
+    step_both(&x);
+    const uint32_t samples = fw.fw.samples, steps = fw.steps, commits = fake_board.commits;
+    const ht_dcm_state_t dcm = fw.fw.dcm_state;
 
-    hil_step_in_t in;
-    to_hil(&s, &c, &in);
-    uint8_t p[HIL_LEN_SENSORS], f[HIL_FRAME_MAX];
-    hil_sensors_write(p, 1, &in);
-    size_t n = hil_encode(HIL_ID_SENSORS, p, HIL_LEN_SENSORS, f, sizeof f);
+    uint8_t p[HIL_PAYLOAD_MAX], f[HIL_FRAME_MAX];
+    random_step(&rng, 1u, 0, 0, &x);
+    hil_step_write(p, &x.step);
+    size_t n = hil_encode(HIL_ID_STEP, p, HIL_LEN_STEP, f, sizeof f);
     f[10] ^= 0x01u; /* one payload bit: bad CRC */
     for (size_t i = 0; i < n; ++i) {
         hil_fw_on_byte(&fw, f[i]);
     }
-    /* the right payload with one byte too many: a known id, the wrong length */
-    n = hil_encode(HIL_ID_SENSORS, p, HIL_LEN_SENSORS - 1u, f, sizeof f);
+    /* a known id with the wrong length */
+    n = hil_encode(HIL_ID_IMU, p, HIL_LEN_IMU - 1u, f, sizeof f);
     for (size_t i = 0; i < n; ++i) {
         hil_fw_on_byte(&fw, f[i]);
     }
@@ -462,41 +629,139 @@ static void test_bad_frames_are_never_acted_on(void)
     for (size_t i = 0; i < sizeof garbage; ++i) {
         hil_fw_on_byte(&fw, garbage[i]);
     }
+    /* an IMU frame outside a step: not stepped, not answered */
+    push_frame(HIL_ID_IMU, p, HIL_LEN_IMU);
     TEST_ASSERT_EQUAL_INT(0, replies()); /* no answer to any */
     TEST_ASSERT_EQUAL_UINT16(1u, fw.rx.stats.bad_crc);
     TEST_ASSERT_EQUAL_UINT16(3u, fw.rx.stats.unknown_id); /* wrong length counts here */
-    TEST_ASSERT_EQUAL_UINT32(before.steps, fw.steps);
-    TEST_ASSERT_EQUAL_MEMORY(&before.fw.modes_state, &fw.fw.modes_state, sizeof fw.fw.modes_state);
-    TEST_ASSERT_EQUAL_UINT32(1u, fake_board.commits);
+    TEST_ASSERT_EQUAL_UINT32(samples, fw.fw.samples);
 
-    /* reserved flag bits: refused with a NAK, not stepped */
-    in.flags = 0x10u;
-    hil_sensors_write(p, 2, &in);
-    push_frame(HIL_ID_SENSORS, p, HIL_LEN_SENSORS);
-    TEST_ASSERT_EQUAL_INT(1, replies());
-    TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, host_rx.id);
-    TEST_ASSERT_EQUAL_HEX8(HIL_ID_SENSORS, host_rx.payload[0]);
-    TEST_ASSERT_EQUAL_UINT8(HIL_NAK_BAD_FIELD, host_rx.payload[1]);
-    TEST_ASSERT_EQUAL_UINT32(before.steps, fw.steps);
+    /* reserved bits, a count over the maximum, a fix over 3: NAK, no step */
+    hil_step_t bad = x.step;
+    bad.flags = 0x20u;
+    hil_step_write(p, &bad);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    bad = x.step;
+    bad.imu_count = HIL_IMU_MAX + 1u;
+    hil_step_write(p, &bad);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    bad = x.step;
+    bad.sensors.gps.fix = 4u;
+    hil_step_write(p, &bad);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    hil_step_write(p, &x.step);
+    p[7] |= 0x08u; /* a reserved fresh bit */
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    TEST_ASSERT_EQUAL_INT(4, replies());
+    for (int i = 0; i < 4; ++i) {
+        TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, got_id[i]);
+        TEST_ASSERT_EQUAL_HEX8(HIL_ID_STEP, got[i][0]);
+        TEST_ASSERT_EQUAL_UINT8(HIL_NAK_BAD_FIELD, got[i][1]);
+    }
+    /* SENSORS that do not close the open step: NAK, no sample stepped */
+    uint8_t sp[HIL_LEN_SENSORS];
+    memset(sp, 0, sizeof sp);
+    hil_put_i32(&sp[0], 1);
+    push_frame(HIL_ID_SENSORS, sp, HIL_LEN_SENSORS); /* no step open */
+    hil_step_t s3 = x.step;
+    s3.imu_count = 3u;
+    s3.flags &= (uint8_t)~HIL_SF_USE_TRUTH;
+    hil_step_write(p, &s3);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    push_frame(HIL_ID_SENSORS, sp, HIL_LEN_SENSORS); /* two IMU frames missing */
+    s3.imu_count = 1u;
+    hil_step_write(p, &s3);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    hil_put_i32(&sp[0], 2);
+    push_frame(HIL_ID_SENSORS, sp, HIL_LEN_SENSORS); /* another seq */
+    s3.flags |= HIL_SF_USE_TRUTH;
+    hil_step_write(p, &s3);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    hil_put_i32(&sp[0], 1);
+    push_frame(HIL_ID_SENSORS, sp, HIL_LEN_SENSORS); /* TRUTH missing */
+    s3.flags &= (uint8_t)~HIL_SF_USE_TRUTH;
+    hil_step_write(p, &s3);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    push_frame(HIL_ID_TRUTH, p, HIL_LEN_TRUTH); /* TRUTH not asked for */
+    push_frame(HIL_ID_SENSORS, sp, HIL_LEN_SENSORS);
+    TEST_ASSERT_EQUAL_INT(5, replies());
+    for (int i = 0; i < 5; ++i) {
+        TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, got_id[i]);
+        TEST_ASSERT_EQUAL_HEX8(HIL_ID_SENSORS, got[i][0]);
+        TEST_ASSERT_EQUAL_UINT8(HIL_NAK_SEQUENCE, got[i][1]);
+    }
+    TEST_ASSERT_EQUAL_UINT16(9u, fw.naks);
+    TEST_ASSERT_EQUAL_UINT32(samples, fw.fw.samples);
+    TEST_ASSERT_EQUAL_UINT32(steps, fw.steps);
+    TEST_ASSERT_EQUAL_UINT32(commits, fake_board.commits);
+    TEST_ASSERT_EQUAL_MEMORY(&dcm, &fw.fw.dcm_state, sizeof dcm);
 
-    /* the stream is still in sync: the next good frame is stepped, and
-     * matches the SIL board (which saw none of the bad ones) */
-    random_inputs(&rng, &s, &c, 0);
-    step_both(3, &s, &c);
+    /* the stream is still in sync: the next good step is stepped, and
+     * matches the SIL board (which saw none of the bad frames) */
+    random_step(&rng, 3u, 0, 1, &x);
+    step_both(&x);
+    random_step(&rng, 4u, 0, 0, &x);
+    step_both(&x);
 }
 
 static void test_sensors_before_start_are_refused(void)
 {
-    uint8_t p[HIL_LEN_SENSORS];
-    hil_step_in_t in;
-    memset(&in, 0, sizeof in);
-    hil_sensors_write(p, 0, &in);
+    uint8_t p[HIL_PAYLOAD_MAX];
+    memset(p, 0, sizeof p);
     push_frame(HIL_ID_SENSORS, p, HIL_LEN_SENSORS);
-    TEST_ASSERT_EQUAL_INT(1, replies());
-    TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, host_rx.id);
-    TEST_ASSERT_EQUAL_UINT8(HIL_NAK_NOT_STARTED, host_rx.payload[1]);
+    hil_step_t s;
+    memset(&s, 0, sizeof s);
+    hil_step_write(p, &s);
+    push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
+    TEST_ASSERT_EQUAL_INT(2, replies());
+    TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, got_id[0]);
+    TEST_ASSERT_EQUAL_UINT8(HIL_NAK_NOT_STARTED, got[0][1]);
+    TEST_ASSERT_EQUAL_HEX8(HIL_ID_STEP, got[1][0]);
+    TEST_ASSERT_EQUAL_UINT8(HIL_NAK_NOT_STARTED, got[1][1]);
     TEST_ASSERT_EQUAL_UINT32(0u, fake_board.writes);
     TEST_ASSERT_EQUAL_UINT32(0u, fw.steps);
+}
+
+/* Every frame survives its writer and parser (fields at their documented
+ * offsets; the extremes of every integer). */
+static void test_frames_round_trip(void)
+{
+    uint64_t rng = 77;
+    for (int t = 0; t < 200; ++t) {
+        fx_step_t x;
+        random_step(&rng, (uint32_t)ts_rng_next(&rng), t % 2, 1, &x);
+        x.step.imu_count = (uint8_t)(t % 33);
+        uint8_t p[HIL_PAYLOAD_MAX];
+        hil_step_t s;
+        hil_step_write(p, &x.step);
+        hil_step_parse(p, &s);
+        TEST_ASSERT_EQUAL_UINT8(x.step.flags & 0x0Fu, s.flags & 0x0Fu);
+        s.fresh = 0u;
+        s.guided.altitude_hold = x.step.guided.altitude_hold;
+        s.guided.speed_hold = x.step.guided.speed_hold;
+        s.guided.inverted = x.step.guided.inverted;
+        s.guided.pitch_mode = x.step.guided.pitch_mode;
+        TEST_ASSERT_EQUAL_MEMORY(&x.step, &s, sizeof s);
+        fw_nav_t n;
+        hil_truth_write(p, &x.truth);
+        hil_truth_parse(p, &n);
+        TEST_ASSERT_EQUAL_MEMORY(&x.truth, &n, sizeof n);
+        ht_imu_sample_t m = {{INT32_MIN, INT32_MAX, -1}, {1, INT32_MIN, INT32_MAX}}, m2;
+        hil_imu_write(p, &m);
+        hil_imu_parse(p, &m2);
+        TEST_ASSERT_EQUAL_MEMORY(&m, &m2, sizeof m);
+    }
+    /* the guided switches come from the flags */
+    hil_step_t s;
+    memset(&s, 0, sizeof s);
+    s.flags = HIL_SF_ALTITUDE_HOLD | HIL_SF_INVERTED;
+    uint8_t p[HIL_PAYLOAD_MAX];
+    hil_step_write(p, &s);
+    hil_step_parse(p, &s);
+    TEST_ASSERT_EQUAL_UINT8(1u, s.guided.altitude_hold);
+    TEST_ASSERT_EQUAL_UINT8(0u, s.guided.speed_hold);
+    TEST_ASSERT_EQUAL_UINT8(1u, s.guided.inverted);
+    TEST_ASSERT_EQUAL_UINT8(0u, s.guided.pitch_mode);
 }
 
 static void test_start_checks_the_configuration(void)
@@ -513,12 +778,36 @@ static void test_start_checks_the_configuration(void)
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 
     /* a bad channel block is refused when it arrives */
-    uint8_t p[HIL_LEN_CFG_OUT];
+    uint8_t p[HIL_PAYLOAD_MAX];
     memset(p, 0, sizeof p);
     p[0] = 9u;
     push_frame(HIL_ID_CFG_OUT, p, HIL_LEN_CFG_OUT);
     TEST_ASSERT_EQUAL_INT(1, replies());
     TEST_ASSERT_EQUAL_HEX8(HIL_ID_NAK, host_rx.id);
+
+    /* the estimator's block: a divider that does not give the IMU rate, a
+     * timeout of 0, an IMU rate under 50 Hz: refused, naming the field */
+    send_config(&c, q16(c.kp_aileron));
+    fw_config_t est = sil.cfg;
+    est.control_divider = 2u;
+    hil_cfg_est_write(p, &est);
+    push_frame(HIL_ID_CFG_EST, p, HIL_LEN_CFG_EST);
+    push_frame(HIL_ID_START, NULL, 0);
+    expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST, HIL_EST_BAD_DIVIDER);
+    est = sil.cfg;
+    est.imu_timeout_samples = 0u;
+    hil_cfg_est_write(p, &est);
+    push_frame(HIL_ID_CFG_EST, p, HIL_LEN_CFG_EST);
+    push_frame(HIL_ID_START, NULL, 0);
+    expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST, HIL_EST_BAD_TIMEOUT);
+    est = sil.cfg;
+    est.dcm.imu_rate_hz = 40u;
+    est.control_divider = 1u;
+    hil_cfg_est_write(p, &est);
+    push_frame(HIL_ID_CFG_EST, p, HIL_LEN_CFG_EST);
+    push_frame(HIL_ID_START, NULL, 0);
+    expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST, (uint8_t)HT_DCM_P_IMU_RATE);
+    TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 
     send_config(&c, q16(c.kp_aileron));
     push_frame(HIL_ID_START, NULL, 0);
@@ -533,7 +822,10 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_ready_banner_and_hello);
-    RUN_TEST(test_same_step_as_the_sil_board);
+    RUN_TEST(test_frames_round_trip);
+    RUN_TEST(test_same_step_as_the_sil_board_estimate);
+    RUN_TEST(test_same_step_as_the_sil_board_truth);
+    RUN_TEST(test_same_step_as_the_sil_board_mixed);
     RUN_TEST(test_bad_frames_are_never_acted_on);
     RUN_TEST(test_sensors_before_start_are_refused);
     RUN_TEST(test_start_checks_the_configuration);

@@ -3,12 +3,15 @@
 `run ... --target pil` flies a scenario exactly as the SIL does (the same
 lockstep loop of sim.py), except that each control step is computed by the
 HIL firmware image (`ht_stm32f4_hil.elf`, firmware/hil_main.c) running
-in `qemu-system-arm -M netduinoplus2`: the host converts the sensors and the
-command into the firmware's fixed-point formats (the conversions of
-boards/sil/sil_board.c, rounding to nearest with ties away from zero), sends
-one SENSORS frame over the emulated USART1 (QEMU's -serial #0, a TCP socket
-with nodelay=on), and flies the pulses the firmware answers with: the values
-it read back from its timers' compare registers. Protocol: docs/hil-protocol.md.
+in `qemu-system-arm -M netduinoplus2`: the host converts the raw sensor
+samples, the truth solution and the command into the firmware's fixed-point
+formats (the conversions of boards/sil/sil_board.c, rounding to nearest with
+ties away from zero), sends one control step's frames (STEP, TRUTH, IMU...,
+SENSORS) over the emulated USART1 (QEMU's -serial #0, a TCP socket with
+nodelay=on), and flies the pulses the firmware answers with: the values it
+read back from its timers' compare registers; the rest of the telemetry (the
+estimate, the solution flown) is the firmware's STATE answer. Both attitude
+sources work. Protocol: docs/hil-protocol.md.
 
 The host board library still runs beside it, step for step on the same
 inputs, as a shadow: every step whose firmware answer differs from the host
@@ -43,14 +46,24 @@ from helical_sil.board import Board, BoardError, SilActuators
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 2  # 2: CFG_ALT carries the airspeed protection
+PROTOCOL_VERSION = 3  # 3: raw sensor samples, CFG_EST, STATE
 
-ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_SENSORS = (
-    0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x20)
-ID_READY, ID_NAK, ID_ACK, ID_OUTPUT = 0x81, 0x8E, 0x94, 0xA0
-FW_LENGTHS = {ID_READY: 24, ID_NAK: 2, ID_ACK: 4, ID_OUTPUT: 40}
+ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
+    0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)
+ID_SENSORS, ID_STEP, ID_TRUTH, ID_IMU = 0x20, 0x21, 0x22, 0x23
+ID_READY, ID_NAK, ID_ACK, ID_OUTPUT, ID_STATE = 0x81, 0x8E, 0x94, 0xA0, 0xA1
+FW_LENGTHS = {ID_READY: 24, ID_NAK: 2, ID_ACK: 4, ID_OUTPUT: 40, ID_STATE: 55}
+LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS, LEN_CFG_EST = 52, 42, 24, 28, 41
+IMU_MAX = 32  # samples per control step (HIL_IMU_MAX = SIL_IMU_MAX)
+# The firmware's receive ring holds 255 bytes: a step's frames beyond this
+# many bytes are sent after a HELLO/READY round trip (the firmware has then
+# taken everything before it).
+RX_BUDGET = 224
 
 SF_ALTITUDE_HOLD, SF_SPEED_HOLD, SF_INVERTED, SF_TILT_CROSS = 0x01, 0x02, 0x04, 0x08
+SF_USE_TRUTH = 0x10
+FRESH_GPS, FRESH_AIRSPEED, FRESH_BARO = 0x01, 0x02, 0x04
+ST_CONTROL_RAN, ST_FAILSAFE, ST_GUARD_ENGAGED = 0x01, 0x02, 0x04
 
 # output-stage functions (include/helical/mixer.h) of the SIL's four channels
 OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE = 1, 3, 4, 5
@@ -168,6 +181,37 @@ def cm32(v: float) -> int:
     return to_fixed(v, 100.0, *I32)
 
 
+def _i16(v: int) -> bytes:
+    return v.to_bytes(2, "little", signed=True)
+
+
+def _i32(v: int) -> bytes:
+    return v.to_bytes(4, "little", signed=True)
+
+
+def _u16(v: int) -> bytes:
+    return v.to_bytes(2, "little")
+
+
+def cfg_est_payload(c: dict[str, Any]) -> bytes:
+    """CFG_EST: the estimator and the IMU timing, as sil_board_init converts
+    them (dcm_params; divider = imu / control rate; timeout = imu rate / 5)."""
+    rad = math.pi / 180.0
+    imu, ctl = int(c["imu_rate_hz"]), int(c["control_rate_hz"])
+    if ctl < 1 or imu < ctl or imu % ctl != 0 or imu // ctl > IMU_MAX:
+        raise PilError(f"imu_rate_hz {imu} is not 1..{IMU_MAX} times control_rate_hz {ctl}")
+    p = _u16(to_fixed(imu, 1.0, 0, 0xFFFF)) + _u16(imu // ctl) + _u16(imu // 5)
+    p += b"".join(_i32(q16(c[k])) for k in (
+        "dcm_kp_rollpitch", "dcm_ki_rollpitch", "dcm_kp_yaw", "dcm_ki_yaw"))
+    p += _i32(q16(c["dcm_gyro_bias_max_deg_s"] * rad))
+    p += _i32(q16(c["dcm_gyro_limit_deg_s"] * rad))
+    p += _i32(q16(c["dcm_accel_limit_g"])) + _i32(q16(c["dcm_accel_band_g"]))
+    p += _i16(cm16(c["dcm_gps_min_speed_m_s"]))
+    p += bytes((to_fixed(c["dcm_centripetal"], 1.0, 0, 255),))
+    assert len(p) == LEN_CFG_EST
+    return p
+
+
 def _channel_default(fn: int) -> dict[str, int]:
     """os_channel_default (src/output_stage.c)."""
     thr = fn == OS_FN_THROTTLE
@@ -222,29 +266,102 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
         for k in ("travel_us", "min_us", "max_us", "failsafe_us"):
             out += ch[k].to_bytes(2, "little")
     assert (len(law), len(alt), len(spd), len(out)) == (49, 52, 22, 58)
-    return [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
-            encode(ID_CFG_OUT, out)]
+    frames = [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
+              encode(ID_CFG_OUT, out)]
+    if "imu_rate_hz" in c:
+        frames.append(encode(ID_CFG_EST, cfg_est_payload(c)))
+    return frames
 
 
-def sensors_payload(seq: int, s: Any, c: Any) -> bytes:
-    """SENSORS from a SilSensors and a SilCommand (sil_board_step's conversions)."""
+def imu_count(s: Any) -> int:
+    """The samples sil_board_step takes: imu_count clamped to [0, IMU_MAX]."""
+    return min(max(int(s.imu_count), 0), IMU_MAX)
+
+
+def imu_payload(s: Any, i: int) -> bytes:
+    """Sample i of a SilSensors: gyro rad/s and specific force g, Q16."""
+    return (b"".join(_i32(q16(s.gyro_rad_s[i][k])) for k in range(3))
+            + b"".join(_i32(q16(s.accel_g[i][k])) for k in range(3)))
+
+
+def step_payload(seq: int, s: Any, c: Any) -> bytes:
+    """STEP from a SilSensors and a SilCommand (sil_board_step's slow_sensors
+    and guided_command conversions)."""
     thr = c.throttle
     thr = 0.0 if thr < 0.0 else (1.0 if thr > 1.0 else thr)
     flags = ((SF_ALTITUDE_HOLD if c.altitude_hold else 0) | (SF_SPEED_HOLD if c.speed_hold else 0)
-             | (SF_INVERTED if c.inverted else 0) | (SF_TILT_CROSS if c.pitch_mode else 0))
+             | (SF_INVERTED if c.inverted else 0) | (SF_TILT_CROSS if c.pitch_mode else 0)
+             | (SF_USE_TRUTH if s.use_truth else 0))
+    fresh = ((FRESH_GPS if s.gps_fresh else 0) | (FRESH_AIRSPEED if s.airspeed_fresh else 0)
+             | (FRESH_BARO if s.baro_fresh else 0))
     p = (seq & 0xFFFFFFFF).to_bytes(4, "little")
-    for v in (q14(s.dcm_x), q14(s.dcm_y), q14(s.dcm_z), q11(s.gyro_x), q11(s.gyro_y),
-              q11(s.gyro_z), cm16(s.airspeed_m_s)):
-        p += v.to_bytes(2, "little", signed=True)
-    p += cm32(s.altitude_m).to_bytes(4, "little", signed=True)
-    p += cm32(s.climb_m_s).to_bytes(4, "little", signed=True)
-    p += q11(c.turn_rate_rad_s).to_bytes(2, "little", signed=True)
-    p += q16(c.pitch_ratio).to_bytes(4, "little", signed=True)
-    p += cm32(c.altitude_m).to_bytes(4, "little", signed=True)
-    p += cm16(c.airspeed_m_s).to_bytes(2, "little", signed=True)
-    p += q14(thr).to_bytes(2, "little", signed=True)
-    p += bytes((flags,))
+    p += bytes((flags, imu_count(s), to_fixed(s.gps_fix, 1.0, 0, 3), fresh))
+    p += _i32(to_fixed(s.gps_lat_deg, 1.0e7, -900000000, 900000000))
+    p += _i32(to_fixed(s.gps_lon_deg, 1.0e7, -1800000000, 1800000000))
+    p += _i32(cm32(s.gps_alt_m))
+    p += b"".join(_i32(cm32(s.gps_vel_ned_m_s[k])) for k in range(3))
+    p += _i16(cm16(s.pitot_m_s)) + _i32(cm32(s.baro_alt_m))
+    p += _i16(q11(c.turn_rate_rad_s)) + _i32(q16(c.pitch_ratio)) + _i32(cm32(c.altitude_m))
+    p += _i16(cm16(c.airspeed_m_s)) + _i16(q14(thr))
+    assert len(p) == LEN_STEP
     return p
+
+
+def truth_payload(s: Any) -> bytes:
+    """TRUTH: JSBSim's state as sil_board.c's truth_solution converts it."""
+    p = b"".join(_i16(q14(v)) for v in (s.dcm_x, s.dcm_y, s.dcm_z))
+    p += b"".join(_i16(q11(v)) for v in (s.gyro_x, s.gyro_y, s.gyro_z))
+    p += _i16(cm16(s.airspeed_m_s))
+    p += b"".join(_i32(cm32(v)) for v in (s.altitude_m, s.climb_m_s, s.north_m, s.east_m,
+                                          s.vel_north_m_s, s.vel_east_m_s))
+    p += _i16(q14(math.cos(s.heading_rad))) + _i16(q14(math.sin(s.heading_rad)))
+    assert len(p) == LEN_TRUTH
+    return p
+
+
+def step_frames(seq: int, s: Any, c: Any) -> list[bytes]:
+    """One control step's frames: STEP, TRUTH (when the truth is flown), an
+    IMU frame per sample but the last, SENSORS (seq and the last sample)."""
+    n = imu_count(s)
+    frames = [encode(ID_STEP, step_payload(seq, s, c))]
+    if s.use_truth:
+        frames.append(encode(ID_TRUTH, truth_payload(s)))
+    frames += [encode(ID_IMU, imu_payload(s, i)) for i in range(n - 1)]
+    last = imu_payload(s, n - 1) if n > 0 else bytes(LEN_IMU)
+    frames.append(encode(ID_SENSORS, (seq & 0xFFFFFFFF).to_bytes(4, "little") + last))
+    return frames
+
+
+@dataclass
+class State:
+    """STATE: the estimate and the solution the control flew on."""
+    seq: int
+    flags: int
+    est_row: tuple[int, int, int]
+    roll_cdeg: int
+    pitch_cdeg: int
+    yaw_cdeg: int
+    bias_q16: tuple[int, int, int]
+    est_flags: int
+    nav_row: tuple[int, int, int]
+    nav_airspeed_cm_s: int
+    nav_altitude_cm: int
+    nav_climb_cm_s: int
+    nav_north_cm: int
+    nav_east_cm: int
+
+    @classmethod
+    def parse(cls, p: bytes) -> State:
+        def i16(o: int) -> int:
+            return int.from_bytes(p[o: o + 2], "little", signed=True)
+
+        def i32(o: int) -> int:
+            return int.from_bytes(p[o: o + 4], "little", signed=True)
+
+        return cls(int.from_bytes(p[0:4], "little"), p[4], (i16(5), i16(7), i16(9)), i16(11),
+                   i16(13), int.from_bytes(p[15:17], "little"), (i32(17), i32(21), i32(25)),
+                   int.from_bytes(p[29:31], "little"), (i16(31), i16(33), i16(35)), i16(37),
+                   i32(39), i32(43), i32(47), i32(51))
 
 
 @dataclass
@@ -325,7 +442,8 @@ class Target:
         self.dec = Decoder(FW_LENGTHS)
         self.pending: list[tuple[int, bytes]] = []
         self.ready: dict[str, int] = {}
-        self.frames = 0
+        self.frames = 0  # control steps answered
+        self.frames_sent = 0  # frames sent for them (STEP, TRUTH, IMU, SENSORS)
         self.link_s = 0.0
         self._start(start_timeout_s)
 
@@ -425,18 +543,28 @@ class Target:
             raise PilError(f"the firmware's configuration check: {what} 0x{ack[1]:02x}, "
                            f"detail {ack[2]}")
 
-    def step(self, seq: int, payload: bytes) -> Output:
+    def step(self, seq: int, frames: list[bytes]) -> tuple[State, Output]:
+        """Send one control step's frames; its STATE and OUTPUT."""
         t0 = time.perf_counter()
-        self.send(encode(ID_SENSORS, payload))
+        chunk = b""
+        for f in frames:
+            if chunk and len(chunk) + len(f) > RX_BUDGET:
+                self.send(chunk)  # more than the firmware's ring: wait until it took these
+                chunk = b""
+                self.status()
+            chunk += f
+        self.send(chunk)
         try:
+            st = State.parse(self.expect(ID_STATE))
             out = Output.parse(self.expect(ID_OUTPUT))
         except TimeoutError:
-            raise PilError(f"no OUTPUT for step {seq} within {self.timeout_s} s") from None
+            raise PilError(f"no STATE and OUTPUT for step {seq} within {self.timeout_s} s") from None
         self.link_s += time.perf_counter() - t0
         self.frames += 1
-        if out.seq != seq & 0xFFFFFFFF:
-            raise PilError(f"OUTPUT for step {out.seq}, expected {seq}")
-        return out
+        self.frames_sent += len(frames)
+        if out.seq != seq & 0xFFFFFFFF or st.seq != out.seq:
+            raise PilError(f"OUTPUT for step {out.seq} (STATE {st.seq}), expected {seq}")
+        return st, out
 
     def status(self) -> dict[str, int]:
         """The firmware's counters (HELLO -> READY; one frame in flight)."""
@@ -479,9 +607,14 @@ class Target:
 
 # --- the board the lockstep loop sees ------------------------------------------
 
-ACT_FIELDS = ("aileron", "elevator", "rudder", "throttle", "law_aileron", "law_elevator",
-              "law_rudder", "pitch_cmd", "turn_rate_used_rad_s", "roll_error", "pitch_error",
-              "flags")
+# every field of the actuators: the shadow comparison covers them all (the
+# flight modes' are zero on both sides: PIL flies guided scenarios only)
+ACT_FIELDS = tuple(f[0] for f in SilActuators._fields_)
+
+
+def _field(a: SilActuators, name: str) -> Any:
+    v = getattr(a, name)
+    return tuple(v) if isinstance(v, ctypes.Array) else v
 
 
 @dataclass
@@ -523,9 +656,27 @@ class PilBoard:
 
     def step(self) -> SilActuators:
         k = self.stats.steps
-        out = self.target.step(k, sensors_payload(k, self.host.sensors, self.host.command))
+        st, out = self.target.step(k, step_frames(k, self.host.sensors, self.host.command))
         a = self._act
         ctypes.memset(ctypes.addressof(a), 0, ctypes.sizeof(a))
+        if st.flags & ST_CONTROL_RAN:  # else zeros, as the host board answers
+            self._fill(a, st, out)
+            if out.ccr_us != out.pulse_us:
+                self.stats.readback_mismatch_steps += 1
+        h = self.host.step()  # the shadow: the host board on the same inputs
+        diff = {f: (_field(a, f), _field(h, f)) for f in ACT_FIELDS
+                if _field(a, f) != _field(h, f)}
+        if diff:
+            self.stats.mismatch_steps += 1
+            if len(self.stats.first_mismatches) < 5:
+                self.stats.first_mismatches.append({"step": k, "pil_vs_sil": diff})
+        self.stats.steps += 1
+        return a
+
+    def _fill(self, a: SilActuators, st: State, out: Output) -> None:
+        """The actuators from the firmware's answer, converted as sil_board.c's
+        actuators() converts the step's output."""
+        a.control_ran = 1
         # the surfaces flown are the pulses read back from the timers (CCRx)
         a.aileron = self._deflection(0, out.ccr_us[0])
         a.elevator = self._deflection(1, out.ccr_us[1])
@@ -539,17 +690,20 @@ class PilBoard:
         a.roll_error = out.roll_error / 16384.0
         a.pitch_error = out.pitch_error / 16384.0
         a.flags = out.flags
-        if out.ccr_us != out.pulse_us:
-            self.stats.readback_mismatch_steps += 1
-        h = self.host.step()  # the shadow: the host board on the same inputs
-        diff = {f: (getattr(a, f), getattr(h, f)) for f in ACT_FIELDS
-                if getattr(a, f) != getattr(h, f)}
-        if diff:
-            self.stats.mismatch_steps += 1
-            if len(self.stats.first_mismatches) < 5:
-                self.stats.first_mismatches.append({"step": k, "pil_vs_sil": diff})
-        self.stats.steps += 1
-        return a
+        a.est_x, a.est_y, a.est_z = (v / 16384.0 for v in st.est_row)
+        a.est_roll_deg = st.roll_cdeg / 100.0
+        a.est_pitch_deg = st.pitch_cdeg / 100.0
+        a.est_yaw_deg = st.yaw_cdeg / 100.0
+        for k in range(3):
+            a.est_bias_rad_s[k] = st.bias_q16[k] / 65536.0
+        a.est_flags = st.est_flags
+        a.nav_x, a.nav_y, a.nav_z = (v / 16384.0 for v in st.nav_row)
+        a.nav_airspeed_m_s = st.nav_airspeed_cm_s / 100.0
+        a.nav_altitude_m = st.nav_altitude_cm / 100.0
+        a.nav_climb_m_s = st.nav_climb_cm_s / 100.0
+        a.nav_north_m = st.nav_north_cm / 100.0
+        a.nav_east_m = st.nav_east_cm / 100.0
+        a.guard_engaged = 1 if st.flags & ST_GUARD_ENGAGED else 0
 
 
 @dataclass
@@ -560,14 +714,18 @@ class PilResult:
     link_s: float
     ready_start: dict[str, int]
     ready_end: dict[str, int]
+    frames_sent: int = 0
 
     def summary(self) -> dict[str, Any]:
         wall = self.result.wall_s
         return {
             "target": "pil", "machine": "qemu-system-arm -M netduinoplus2",
             "frames": self.frames,
+            "frames_sent": self.frames_sent,  # all host -> firmware frames of the steps
             "frames_per_s_link": self.frames / self.link_s if self.link_s > 0 else None,
             "frames_per_s_loop": self.frames / wall if wall > 0 else None,
+            "frames_sent_per_s_link": (self.frames_sent / self.link_s if self.link_s > 0
+                                       else None),
             "mismatch_steps_vs_host_step": self.stats.mismatch_steps,
             "readback_mismatch_steps": self.stats.readback_mismatch_steps,
             "first_mismatches": self.stats.first_mismatches,
@@ -603,7 +761,8 @@ def run(sc: Any, board_lib: str | None = None, elf: str | None = None,
             ready1 = target.status()
         except (TimeoutError, PilError):
             ready1 = {}
-        return PilResult(res, stats, target.frames, target.link_s, ready0, ready1)
+        return PilResult(res, stats, target.frames, target.link_s, ready0, ready1,
+                         target.frames_sent)
 
 
 @contextlib.contextmanager

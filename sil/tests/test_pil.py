@@ -22,7 +22,8 @@ from helical_sil import pil, sim
 from helical_sil.scenario import load_scenario
 
 SIL_DIR = Path(__file__).resolve().parents[1]
-SHORT = SIL_DIR / "scenarios" / "pil" / "default_short.toml"
+SHORT = SIL_DIR / "scenarios" / "pil" / "default_short.toml"  # [attitude] source = "truth"
+SHORT_ESTIMATE = SIL_DIR / "scenarios" / "pil" / "estimate_short.toml"  # source = "estimate"
 SURFACES = ("aileron", "elevator", "rudder", "throttle")
 
 
@@ -105,8 +106,34 @@ def _strip(d: object) -> object:
     return d
 
 
-def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path: Path) -> None:
-    sc = load_scenario(SHORT)
+def test_step_frames_carry_the_host_boards_integers() -> None:
+    """One step's frames: STEP, TRUTH only when flown, imu_count - 1 IMU
+    frames, SENSORS with the last sample; values as sil_board.c converts."""
+    s, c = _Sensors(), _Command()
+    s.imu_count = 3
+    s.gyro_rad_s = [[0.5 / 65536, -1.5 / 65536, 40.0]] * 3
+    s.accel_g = [[0.0, 0.25, -1.0]] * 2 + [[1e9, float("nan"), -1e9]]
+    frames = pil.step_frames(7, s, c)
+    assert [f[3] for f in frames] == [pil.ID_STEP, pil.ID_TRUTH, pil.ID_IMU, pil.ID_IMU,
+                                      pil.ID_SENSORS]
+    assert [f[2] for f in frames] == [52, 42, 24, 24, 28]
+    last = frames[-1][4:-2]
+    assert int.from_bytes(last[0:4], "little") == 7
+    vals = [int.from_bytes(last[4 + 4 * i: 8 + 4 * i], "little", signed=True) for i in range(6)]
+    assert vals == [1, -2, 40 * 65536, 2 ** 31 - 1, 0, -(2 ** 31)]  # ties away, clamps, NaN
+    step = frames[0][4:-2]
+    assert step[4] == pil.SF_USE_TRUTH and step[5] == 3 and step[6] == 3 and step[7] == 7
+    assert int.from_bytes(step[8:12], "little", signed=True) == 470000001  # 47.0000001 deg
+    s.use_truth, s.imu_count = 0, 0
+    frames = pil.step_frames(8, s, c)
+    assert [f[3] for f in frames] == [pil.ID_STEP, pil.ID_SENSORS]
+    assert frames[-1][8:-2] == bytes(24)
+
+
+@pytest.mark.parametrize("scenario", [SHORT, SHORT_ESTIMATE], ids=["truth", "estimate"])
+def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path: Path,
+                                             scenario: Path) -> None:
+    sc = load_scenario(scenario)
     ref = sim.run(sc, board_lib)
     r = pil.run(sc, board_lib, elf)
     got = r.result
@@ -120,11 +147,15 @@ def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path:
                                                equal_nan=True)]
     m_ref, m_pil = met.run_metrics(ref), met.run_metrics(got)
     s = r.summary()
-    report = {"steps": n, "mismatching_surface_steps": mismatching,
+    report = {"scenario": scenario.name, "attitude_source": sc.attitude_source,
+              "steps": n, "mismatching_surface_steps": mismatching,
               "differing_columns": differing_columns,
               "mismatch_steps_vs_host_step": s["mismatch_steps_vs_host_step"],
               "frames_per_s_link": s["frames_per_s_link"],
               "frames_per_s_loop": s["frames_per_s_loop"],
+              "frames_sent": s["frames_sent"],
+              "frames_sent_per_s_link": s["frames_sent_per_s_link"],
+              "pil_wall_s": got.wall_s, "sil_wall_s": ref.wall_s,
               "firmware": s["firmware_counters_end"], "sil_run": m_ref["run"],
               "pil_run": m_pil["run"]}
     print(json.dumps(report, indent=1))
@@ -143,28 +174,37 @@ def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path:
 def test_firmware_drops_bad_frames_on_the_wire(elf: str) -> None:
     with pil.Target(elf) as t:
         before = t.status()
-        good = pil.sensors_payload(0, _Sensors(), _Command())
-        bad_crc = bytearray(pil.encode(pil.ID_SENSORS, good))
+        good = pil.step_payload(0, _Sensors(), _Command())
+        bad_crc = bytearray(pil.encode(pil.ID_STEP, good))
         bad_crc[10] ^= 0x40
         t.send(b"\x00\x13\xa5" + bytes(bad_crc) + pil.encode(0x33, b"xyz")
-               + pil.encode(pil.ID_SENSORS, good[:-1]))
+               + pil.encode(pil.ID_STEP, good[:-1]))
         # nothing may come back for those: only the READY asked for next
         after = t.status()
         assert after["bad_crc"] == before["bad_crc"] + 1
         assert after["unknown_id"] == before["unknown_id"] + 2  # unknown id, wrong length
         assert after["steps"] == before["steps"] == 0
         assert not t.pending
-        # SENSORS before START: refused (NAK), not stepped
-        t.send(pil.encode(pil.ID_SENSORS, good))
+        # a step before START: refused (NAK), not stepped
+        t.send(pil.encode(pil.ID_STEP, good))
         with pytest.raises(pil.PilError, match="refused"):
             t.expect(pil.ID_OUTPUT, timeout_s=2.0)
         assert t.status()["naks"] == before["naks"] + 1
 
 
 class _Sensors:
+    imu_count = 0
+    gyro_rad_s: list[list[float]] = []
+    accel_g: list[list[float]] = []
+    gps_fresh, gps_fix, gps_lat_deg, gps_lon_deg, gps_alt_m = 1, 3, 47.0000001, 8.0, 1500.0
+    gps_vel_ned_m_s = (110.0, 0.0, 0.0)
+    airspeed_fresh, pitot_m_s, baro_fresh, baro_alt_m = 1, 110.0, 1, 1500.0
+    use_truth = 1
     dcm_x, dcm_y, dcm_z = 0.0, 0.0, 1.0
     gyro_x = gyro_y = gyro_z = 0.0
     airspeed_m_s, altitude_m, climb_m_s = 110.0, 1500.0, 0.0
+    north_m = east_m = vel_east_m_s = heading_rad = 0.0
+    vel_north_m_s = 110.0
 
 
 class _Command:
