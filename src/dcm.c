@@ -185,6 +185,18 @@ static uint16_t clamp_sample(const ht_dcm_t *d, const ht_imu_sample_t *imu, q16_
     return f;
 }
 
+/* |v_gps|^2 / 4 in (cm/s)^2: each component halved (|.| <= 32767) so that
+ * the sum of the three squares stays below 2^32. */
+static uint32_t gps_speed2_q2(const ht_dcm_aiding_t *a)
+{
+    uint32_t sum = 0u;
+    for (unsigned i = 0u; i < 3u; i++) {
+        const int32_t h = clamp32(a->vel_ned_cm_s[i], V_MAX_CM_S) / 2;
+        sum += (uint32_t)(h * h);
+    }
+    return sum;
+}
+
 /*
  * The velocity through the air in body axes from the airspeed V: in the
  * plane of symmetry (no sideslip), [0, vy, vz], its angle of attack from the
@@ -194,11 +206,9 @@ static uint16_t clamp_sample(const ht_dcm_t *d, const ht_imu_sample_t *imu, q16_
  * bank) is missed and w x v is 0.2 g off. |vz| is held to V/2, and 0 when the
  * wings are near vertical (|R[2][2]| < 1/4) where the climb says nothing.
  */
-static void air_velocity(const int32_t r[3][3], const ht_dcm_aiding_t *a, uint8_t use_gps,
-                         int32_t v_q8[3])
+static void air_velocity(const int32_t r[3][3], int32_t v, int32_t climb, int32_t v_q8[3])
 {
-    const int32_t v = a->airspeed_cm_s; /* (0, 32767] */
-    const int32_t climb = (use_gps != 0u) ? -clamp32(a->vel_ned_cm_s[2], 32767) : 0;
+    /* v in (0, 32767] cm/s, climb in [-32767, 32767] cm/s */
     /* R[2][2] in Q15 (|.| in [8192, 49152] where used): the quotient is
      * formed in two integer steps so that vz keeps its Q8 fraction */
     const int32_t r22_q15 = qi_rshift_round(r[2][2], 15u);
@@ -223,28 +233,25 @@ static uint16_t cf_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_d
                             int32_t v_q8[3])
 {
     zero3(v_q8);
-    if (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u &&
-        (a->airspeed_valid == 0u || a->airspeed_cm_s <= 0)) {
-        int32_t vn[3];
-        for (unsigned i = 0u; i < 3u; i++) {
-            vn[i] = clamp32(a->vel_ned_cm_s[i], V_MAX_CM_S);
-        }
-        /* R^T v: |.| <= 3 * 1.5 * 65535 * 2^8, fits */
-        for (unsigned j = 0u; j < 3u; j++) {
-            int32_t acc = 0;
-            for (unsigned i = 0u; i < 3u; i++) {
-                acc = qi_add_sat32(acc, qi_mul32(r[i][j], vn[i], 22u));
-            }
-            v_q8[j] = acc;
+    if (d->p.centripetal == (uint8_t)HT_DCM_CF_OFF) {
+        return 0u;
+    }
+    const uint8_t gps = (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) ? 1u : 0u;
+    const int32_t climb = (gps != 0u) ? -clamp32(a->vel_ned_cm_s[2], 32767) : 0;
+    if (a->airspeed_valid != 0u && a->airspeed_cm_s > 0) {
+        air_velocity(r, a->airspeed_cm_s, climb, v_q8);
+        return (gps != 0u) ? (uint16_t)HT_DCM_F_CF_GPS : 0u;
+    }
+    if (gps != 0u) {
+        /* no airspeed (a dead pitot): the GPS speed in its place, not the GPS
+         * velocity rotated into the body, whose heading error would tilt the
+         * reference (a 3-degree yaw error is a 0.06 g side force at 1 g) */
+        const uint32_t sq = gps_speed2_q2(a);
+        const int32_t v = clamp32((int32_t)q_isqrt32(sq) * 2, 32767);
+        if (v > 0) {
+            air_velocity(r, v, climb, v_q8);
         }
         return (uint16_t)HT_DCM_F_CF_GPS;
-    }
-    if (d->p.centripetal != (uint8_t)HT_DCM_CF_OFF && a->airspeed_valid != 0u &&
-        a->airspeed_cm_s > 0) {
-        const uint8_t gps =
-            (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) ? 1u : 0u;
-        air_velocity(r, a, gps, v_q8);
-        return (gps != 0u) ? (uint16_t)HT_DCM_F_CF_GPS : 0u;
     }
     return 0u;
 }
@@ -514,10 +521,16 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
 {
     uint16_t f = 0u;
     const int32_t bmax = d->bias_max_q30;
+    /* After the gyro saturated the attitude is off by what the clipped rate
+     * missed: the roll/pitch correction is 5 times stronger for a second
+     * and the integral learns nothing from that error (it is not a bias). */
+    const uint8_t boost = (s->recover_samples > 0u) ? 1u : 0u;
+    const int32_t rp_gain = (boost != 0u) ? 5 : 1;
     for (unsigned i = 0u; i < 3u; i++) {
         /* the integral of ki * e is minus the bias */
-        const int32_t inc = qi_add_sat32(qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u),
-                                         qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
+        const int32_t inc = (boost != 0u) ? 0
+                                          : qi_add_sat32(qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u),
+                                                         qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
         const int32_t b = clamp32(qi_sub_sat32(s->bias[i], inc), bmax);
         if (b == bmax || b == -bmax) {
             f = (uint16_t)HT_DCM_F_BIAS_LIMITED;
@@ -528,7 +541,8 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
         /* (gyro - bias) dt + kp dt e, Q30 rad */
         int32_t t = qi_mul32(gyro[i], d->dt_q30, 16u);
         t = qi_sub_sat32(t, qi_mul32(b, d->dt_q30, 30u));
-        t = qi_add_sat32(t, qi_mul32(d->kp_rp_dt_q32, e_rp[i], 32u));
+        t = qi_add_sat32(t,
+                         qi_mul32(d->kp_rp_dt_q32, e_rp[i], 32u) * rp_gain); /* <= 5 x 0.32 rad */
         t = qi_add_sat32(t, qi_mul32(d->kp_yaw_dt_q32, e_yaw[i], 32u));
         theta[i] = clamp32(t, THETA_MAX_Q30);
     }
@@ -560,6 +574,13 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     }
     forward_acceleration(d, s, a);
     int32_t e_rp[3];
+    if ((sample_flags & (uint32_t)HT_DCM_F_GYRO_SATURATED) != 0u) {
+        s->recover_samples = d->p.imu_rate_hz;
+    } else if (s->recover_samples > 0u) {
+        s->recover_samples--;
+    } else {
+        /* no saturation in the last second */
+    }
     flags |= rollpitch_error(d, s, a, acc, flags, e_rp);
     const int32_t ey = yaw_error(d, s, a, &flags);
     int32_t e_yaw[3]; /* about the earth vertical: along R[2] in body axes */

@@ -163,6 +163,8 @@ typedef struct {
     uint8_t speed_prev_valid; /* ... when it was valid */
     int32_t g_filt_q24[3];    /* the gravity reference, low-passed (vibration), g, Q24 */
     uint8_t g_filt_valid;
+    uint16_t recover_samples; /* samples left of the stronger correction after a gyro
+                                 saturation (one second at the IMU rate) */
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;

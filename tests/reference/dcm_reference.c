@@ -150,23 +150,29 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     }
     /* gravity reference: (w x v - f) / |.|, v in g*s */
     double v[3] = {0, 0, 0};
-    if (p->centripetal != HT_DCM_CF_OFF && a->airspeed_valid && a->airspeed_cm_s > 0) {
-        /* the air velocity in the plane of symmetry (dcm.c air_velocity) */
-        const double vv = a->airspeed_cm_s;
-        const double climb = (p->centripetal == HT_DCM_CF_AUTO && a->gps_fix)
-                                 ? -clampd(a->vel_ned_cm_s[2], 32767.0)
-                                 : 0.0;
-        double vz = 0.0;
-        if (fabs(s->r[2][2]) >= 0.25) {
-            vz = clampd(clampd(-climb - vv * s->r[2][1], 65535.0) / s->r[2][2], vv / 2);
-        }
-        v[1] = vv - vz * vz / (2 * vv);
-        v[2] = vz;
-    } else if (p->centripetal == HT_DCM_CF_AUTO && a->gps_fix) {
-        for (int j = 0; j < 3; j++) {
+    {
+        /* the air velocity in the plane of symmetry (dcm.c air_velocity), from
+         * the airspeed, or the GPS speed when there is none */
+        const int gps = p->centripetal == HT_DCM_CF_AUTO && a->gps_fix;
+        double vv = 0.0;
+        if (p->centripetal != HT_DCM_CF_OFF && a->airspeed_valid && a->airspeed_cm_s > 0) {
+            vv = a->airspeed_cm_s;
+        } else if (gps) {
+            double s2 = 0.0;
             for (int i = 0; i < 3; i++) {
-                v[j] += s->r[i][j] * clampd(a->vel_ned_cm_s[i], 65535.0);
+                const double h = clampd(a->vel_ned_cm_s[i], 65535.0);
+                s2 += h * h;
             }
+            vv = fmin(sqrt(s2), 32767.0);
+        }
+        if (vv > 0.0) {
+            const double climb = gps ? -clampd(a->vel_ned_cm_s[2], 32767.0) : 0.0;
+            double vz = 0.0;
+            if (fabs(s->r[2][2]) >= 0.25) {
+                vz = clampd(clampd(-climb - vv * s->r[2][1], 65535.0) / s->r[2][2], vv / 2);
+            }
+            v[1] = vv - vz * vz / (2 * vv);
+            v[2] = vz;
         }
     }
     for (int i = 0; i < 3; i++) {
