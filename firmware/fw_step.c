@@ -267,6 +267,7 @@ static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_outpu
     ht_modes_input_t mi;
     (void)memset(&mi, 0, sizeof mi);
     const uint8_t n = (in->rc_count > FW_RC_MAX) ? (uint8_t)FW_RC_MAX : in->rc_count;
+    // cppcheck-suppress knownConditionTrueFalse ; false positive: n = min(rc_count, 16), D-FP-RC
     for (uint8_t i = 0u; i < n; ++i) {
         mi.rc_us[i] = in->rc_us[i];
     }

@@ -5,30 +5,44 @@
 # exits 0 if there is none, 1 if there is any, 2 if a tool could not run.
 # Policy, deviations and how to suppress: docs/static-analysis.md.
 #
-# Scope: src/, include/ and the board code in boards/{common,stm32f4,dspic33,sil}
-# (not their tests/). Compile databases for clang-tidy: SA_TIDY_BUILD_DIR
-# (the host build: the library, boards/sil, fw_loop.c, hil_fw.c and the
-# drivers' host-testable files) and SA_TIDY_CROSS_BUILD_DIR (the stm32f4
-# firmware build: the cross-only files, run with --target=arm-none-eabi and
+# Scope: src/, include/, the firmware in firmware/ and the board code in
+# boards/{common,stm32f4,dspic33,sil} (not their tests/). Compile databases for
+# clang-tidy: SA_TIDY_BUILD_DIR (the host build: the library, boards/sil,
+# firmware/fw_step.c and hil_fw.c (target ht_firmware) and the drivers'
+# host-testable files) and SA_TIDY_CROSS_BUILD_DIR (the stm32f4 firmware
+# build: the cross-only files, fw_main.c and hil_main.c among them, run with --target=arm-none-eabi and
 # newlib's headers). SA_XC16_SOURCES (board_udb.c, XC16-only) are analysed on
 # their own with SA_XC16_DEFINES, the configuration XC16 builds them in.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 board_dirs="boards/common boards/stm32f4 boards/dspic33 boards/sil"
-SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
+SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c firmware/*.c boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
     boards/dspic33/dspic33_oc_pwm.c)"}
 SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
 SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}
-SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h boards/common/*.h boards/stm32f4/*.h \
+SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h firmware/*.h boards/stm32f4/*.h \
     boards/dspic33/*.h boards/sil/*.h)"}
 SA_INCLUDES=${SA_INCLUDES:-"include src firmware $board_dirs"}
 SA_TIDY_BUILD_DIR=${SA_TIDY_BUILD_DIR:-build/host}
 SA_TIDY_CROSS_BUILD_DIR=${SA_TIDY_CROSS_BUILD_DIR:-build/stm32f4}
 
+# A glob that matches nothing stays a literal pattern ("boards/common/*.h" once
+# the firmware moved out): every listed file must exist, or the tool would be
+# silently analysing less (or an '#include "*.h"'). That is a failure to run.
+missing=""
+for f in $SA_SOURCES $SA_XC16_SOURCES $SA_HEADERS; do
+    [ -f "$f" ] || missing="$missing $f"
+done
+if [ -n "$missing" ]; then
+    echo "static analysis: could not run: no such file:$missing (an empty glob in SA_SOURCES/SA_HEADERS?)" >&2
+    exit 2
+fi
+
 CPPCHECK=${CPPCHECK:-cppcheck}
 CLANG_TIDY=${CLANG_TIDY:-$(command -v clang-tidy-14 || command -v clang-tidy || echo clang-tidy-14)}
 SUPPRESSIONS=tools/static-analysis/cppcheck-suppressions.txt
+SUPPRESSIONS_XC16=tools/static-analysis/cppcheck-suppressions-xc16.txt
 
 out=build/static-analysis
 mkdir -p "$out"
@@ -75,17 +89,25 @@ echo "== $("$CPPCHECK" --version) (MISRA C 2012 addon) on: $SA_SOURCES $headers_
 # The XC16-only sources, on their own and in XC16's configuration (-D: only
 # that one; without it they are an #error). A separate run because such a
 # file implements board.h like board_stm32f4.c does: the two are never linked
-# into one program. The suppressions-file entries this run does not exercise
-# are reported unmatched (at 'nofile:0' or, for a path-scoped entry, at
-# '<pattern>:-1'); the main run above checks those for staleness, so only they
-# are dropped here (a stale inline suppression in an XC16 file is reported at
-# its file and line, and is kept).
+# into one program. That run sees a part of the program only, so a
+# whole-program rule (an unused declaration, 2.3) can fail there on a public
+# header that the main run checks with all its users: such an entry, scoped
+# to file and rule, is in SUPPRESSIONS_XC16, read by this run only. The
+# entries of SUPPRESSIONS that this run does not exercise are reported
+# unmatched (at 'nofile:0' or, for a path-scoped entry, at '<pattern>:-1');
+# the main run above checks those for staleness, so exactly those are dropped
+# here. A stale entry of SUPPRESSIONS_XC16, or a stale inline suppression in
+# an XC16 file, is kept: a finding.
 if [ -n "$SA_XC16_SOURCES" ]; then
     echo "== cppcheck (MISRA C 2012 addon), XC16 configuration $SA_XC16_DEFINES on: $SA_XC16_SOURCES"
-    if "$CPPCHECK" "${cppcheck_common[@]}" $SA_XC16_DEFINES $SA_XC16_SOURCES \
-        2>"$out/cppcheck-xc16.raw"; then
-        grep -Ev '^(nofile:0|[^ ]+:-1):0: information: Unmatched suppression: ' \
-            "$out/cppcheck-xc16.raw" \
+    # the unmatched-suppression lines SUPPRESSIONS' entries give, one per entry
+    sed -e 's/[[:space:]]*#.*//' -e '/^[[:space:]]*$/d' "$SUPPRESSIONS" |
+        awk -F: '{ if (NF > 1) f = $2 ":-1"; else f = "nofile:0"
+                   print f ":0: information: Unmatched suppression: " $1 " [unmatchedSuppression]" }' \
+            >"$out/cppcheck-xc16.main-entries"
+    if "$CPPCHECK" "${cppcheck_common[@]}" --suppressions-list="$SUPPRESSIONS_XC16" \
+        $SA_XC16_DEFINES $SA_XC16_SOURCES 2>"$out/cppcheck-xc16.raw"; then
+        grep -vxF -f "$out/cppcheck-xc16.main-entries" "$out/cppcheck-xc16.raw" \
             >>"$out/cppcheck.txt" || true
     else
         failed="$failed cppcheck(xc16)"

@@ -129,6 +129,7 @@ static void drop_failed(hil_decoder_t *d)
             next++;
         }
         unsigned keep = d->held - next;
+        // cppcheck-suppress knownConditionTrueFalse ; false positive: keep >= 1 after a held SYNC1
         for (unsigned k = 0; k < keep; k++) {
             d->window[k] = d->window[next + k];
         }

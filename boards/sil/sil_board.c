@@ -388,7 +388,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
                                                     OS_FN_THROTTLE};
     fc->out.count = SIL_CH_COUNT;
     for (int i = 0; i < (int)OS_MAX_CHANNELS; ++i) {
-        os_channel_default(&fc->out.ch[i], i < SIL_CH_COUNT ? functions[i] : OS_FN_NONE);
+        os_channel_default(&fc->out.ch[i], (i < SIL_CH_COUNT) ? functions[i] : (uint8_t)OS_FN_NONE);
     }
     for (int i = 0; i < 3; ++i) {
         if (!in_range(trims[i], -1.0, 1.0)) {
