@@ -74,17 +74,13 @@ typedef struct {
     unsigned exp;
 } recip_t;
 
-/* 1/S to 2^-30 relative. q_recip_q30 is within 6.3e-8 (2^-24), which the
- * largest legal rate gain (512 per rad/s) times a 32 rad/s target rate would
- * turn into 1.6 LSB; one more Newton step, y += y * (1 - S y), squares that.
- * S is in [100, 32767], so exp is in [6, 14] and S * y / 2^exp is 2^30 within
- * 6.3e-8: the residual is a few tens of LSB of Q30. */
+/* 1/S to a few 2^-30 relative (q_recip_q30's two Newton steps): the largest
+ * legal rate gain (512 per rad/s) times a 32 rad/s target rate would turn an
+ * error of 2^-24 into 1.6 LSB. S is in [100, 32767], so exp is in [6, 14]. */
 static recip_t recip_airspeed(int32_t s_cm_s)
 {
     recip_t r;
     r.inv_q30 = q_recip_q30(s_cm_s, &r.exp);
-    const int32_t sy_q30 = qi_mul32x16_fit(r.inv_q30, (int16_t)s_cm_s, r.exp);
-    r.inv_q30 += qi_mul32_fit(r.inv_q30, (int32_t)0x40000000 - sy_q30, 30u);
     return r;
 }
 

@@ -50,13 +50,14 @@ static int rate_gain_ok(q16_t kff, q16_t kd, const ht_params_t *p)
     return (hi < lim) || (hi == lim && (lo & 2047u) == 0u);
 }
 
+/* The nine gains in ht_params_t's (and ht_param_id_t's) order: kp, kff, kd,
+ * each aileron, elevator, rudder. */
+#define N_GAINS 9
+
 /* The first parameter out of range, or HT_P_NONE. */
-static ht_param_id_t first_bad_param(const ht_params_t *p)
+static ht_param_id_t first_bad_param(const ht_params_t *p, const q16_t gains[N_GAINS])
 {
-    const q16_t gains[9] = {p->kp_aileron,  p->kp_elevator,  p->kp_rudder,
-                            p->kff_aileron, p->kff_elevator, p->kff_rudder,
-                            p->kd_aileron,  p->kd_elevator,  p->kd_rudder};
-    for (int i = 0; i < 9; i++) {
+    for (int i = 0; i < N_GAINS; i++) {
         if (!gain_ok(gains[i])) {
             const int id = (int)HT_P_KP_AILERON + i;
             return (ht_param_id_t)id;
@@ -99,32 +100,38 @@ ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id
     if (ctl == NULL || params == NULL) {
         return HT_ERR_NULL;
     }
-    ht_controller_t c = {0};
-    *ctl = c; /* unusable until every check has passed */
-    ht_param_id_t bad = first_bad_param(params);
+    const ht_controller_t zero = {0};
+    *ctl = zero; /* unusable (ready = 0) until every check has passed */
+    /* One copy of the gains, indexed by the checks (a second copy, or a
+     * controller built on the stack and copied, costs flash that the budget
+     * of README "Boards and firmware" counts). */
+    const q16_t gains[N_GAINS] = {params->kp_aileron,  params->kp_elevator,  params->kp_rudder,
+                                  params->kff_aileron, params->kff_elevator, params->kff_rudder,
+                                  params->kd_aileron,  params->kd_elevator,  params->kd_rudder};
+    const ht_param_id_t bad = first_bad_param(params, gains);
     if (bad != HT_P_NONE) {
         if (bad_field != NULL) {
             *bad_field = bad;
         }
         return HT_ERR_PARAM;
     }
-    /* Body axis order X, Y, Z = elevator, aileron, rudder gains. */
-    c.gains.kp[0] = params->kp_elevator;
-    c.gains.kp[1] = params->kp_aileron;
-    c.gains.kp[2] = params->kp_rudder;
-    c.gains.kff[0] = params->kff_elevator;
-    c.gains.kff[1] = params->kff_aileron;
-    c.gains.kff[2] = params->kff_rudder;
-    c.gains.kd[0] = params->kd_elevator;
-    c.gains.kd[1] = params->kd_aileron;
-    c.gains.kd[2] = params->kd_rudder;
-    c.v_ref_cm_s = (int16_t)params->v_ref_cm_s;
-    c.v_min_cm_s = (int16_t)params->v_min_cm_s;
-    c.schedule = params->schedule;
-    c.pitch_mode = params->pitch_mode;
-    c.max_tilt = params->max_tilt;
-    c.max_tilt_g_q18 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 18); /* <= 2.06e9 */
-    c.ready = 1u;
-    *ctl = c;
+    /* Body axis order X, Y, Z = elevator, aileron, rudder gains (nine plain
+     * copies are smaller than a loop with the index permutation). */
+    ctl->gains.kp[0] = params->kp_elevator;
+    ctl->gains.kp[1] = params->kp_aileron;
+    ctl->gains.kp[2] = params->kp_rudder;
+    ctl->gains.kff[0] = params->kff_elevator;
+    ctl->gains.kff[1] = params->kff_aileron;
+    ctl->gains.kff[2] = params->kff_rudder;
+    ctl->gains.kd[0] = params->kd_elevator;
+    ctl->gains.kd[1] = params->kd_aileron;
+    ctl->gains.kd[2] = params->kd_rudder;
+    ctl->v_ref_cm_s = (int16_t)params->v_ref_cm_s;
+    ctl->v_min_cm_s = (int16_t)params->v_min_cm_s;
+    ctl->schedule = params->schedule;
+    ctl->pitch_mode = params->pitch_mode;
+    ctl->max_tilt = params->max_tilt;
+    ctl->max_tilt_g_q18 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 18); /* <= 2.06e9 */
+    ctl->ready = 1u;
     return HT_OK;
 }
