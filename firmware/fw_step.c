@@ -145,7 +145,7 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
     const board_gps_t *g = &in->sensors.gps;
     const uint8_t fix3 = (g->fix >= 3u) ? 1u : 0u;
     if (in->sensors.airspeed_fresh != 0u) {
-        fw->nav.airspeed_cm_s = in->sensors.airspeed_cm_s;
+        fw->pitot_cm_s = in->sensors.airspeed_cm_s;
         fw->airspeed_live = 1u;
     }
     if (in->sensors.imu_fresh != 0u) {
@@ -168,7 +168,7 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
         aid.vel_ned_cm_s[1] = g->vel_ned_cm_s[1];
         aid.vel_ned_cm_s[2] = g->vel_ned_cm_s[2];
         aid.airspeed_valid = fw->airspeed_live;
-        aid.airspeed_cm_s = fw->nav.airspeed_cm_s;
+        aid.airspeed_cm_s = fw->pitot_cm_s;
         ht_dcm_update(&fw->dcm, &fw->dcm_state, &in->sensors.imu, &aid);
     } else {
         fw->imu_age = age16(fw->imu_age);
@@ -200,6 +200,19 @@ static void navigation(fw_t *fw, const fw_inputs_t *in, const ht_dcm_output_t *e
     /* the nose in earth axes: column 1 of R */
     n->heading_north = est->r[0][1];
     n->heading_east = est->r[1][1];
+    /* A pitot reading below half the GPS ground speed is dead or blocked (a
+     * wind that strong would be a gale): the law flies on the ground speed
+     * instead of its v_min floor. Below 5 m/s over the ground nothing is
+     * judged. */
+    n->airspeed_cm_s = fw->pitot_cm_s;
+    fw->pitot_suspect = 0u;
+    if (in->sensors.gps.fix >= 3u) {
+        const int32_t gs = 16 * (int32_t)q_isqrt32((uint32_t)ground_speed2(&in->sensors.gps));
+        if (gs > 500 && 2 * (int32_t)fw->pitot_cm_s < gs) {
+            n->airspeed_cm_s = (int16_t)q_clamp32(gs, 0, INT16_MAX);
+            fw->pitot_suspect = 1u;
+        }
+    }
     /* Without a 3-D fix the climb rate comes from the baro: its difference
      * per control step, filtered over 32 steps (0.8 s at 40 Hz). */
     if (in->sensors.gps.fix < 3u && fw->have_baro != 0u) {
@@ -366,6 +379,7 @@ int fw_step(fw_t *fw, const fw_inputs_t *in, fw_output_t *out)
         pilot(fw, in, nav, out, &cmd);
     }
     out->guard_engaged = fw->guard_state.engaged;
+    out->pitot_suspect = (in->external == NULL) ? fw->pitot_suspect : 0u;
 
     /* 6. mixer and output stage -> pulses */
     output_stage(cfg, &cmd, out);

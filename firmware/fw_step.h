@@ -129,6 +129,7 @@ typedef struct {
     uint8_t pulse_count; /* channels in pulse_us (0: configuration refused) */
     uint8_t failsafe;    /* 1: IMU lost, failsafe pulses */
     uint8_t guard_engaged;
+    uint8_t pitot_suspect; /* the pitot reads below half the GPS speed: GPS speed flown */
     uint8_t servo_clamped; /* a surface channel sits on an end point */
     uint16_t pulse_us[OS_MAX_CHANNELS];
     q14_t throttle;
@@ -155,7 +156,8 @@ typedef struct {
     int32_t baro_climb_cm_s; /* filtered baro rate (no GPS fix) */
     uint16_t divider_count;
     uint16_t imu_age;
-    uint8_t aligned, have_home, have_baro, airspeed_live;
+    uint8_t aligned, have_home, have_baro, airspeed_live, pitot_suspect;
+    int16_t pitot_cm_s; /* the last pitot reading */
     uint8_t ready;
     uint8_t bad;     /* fw_bad_block_t */
     int32_t bad_sub; /* the block's own field id */
