@@ -192,7 +192,8 @@ static uint32_t gps_speed2_q2(const ht_dcm_aiding_t *a)
     uint32_t sum = 0u;
     for (unsigned i = 0u; i < 3u; i++) {
         const int32_t h = clamp32(a->vel_ned_cm_s[i], V_MAX_CM_S) / 2;
-        sum += (uint32_t)(h * h);
+        const int32_t h2 = h * h; /* <= 32767^2 */
+        sum += (uint32_t)h2;
     }
     return sum;
 }
@@ -525,7 +526,7 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
      * missed: the roll/pitch correction is 5 times stronger for a second
      * and the integral learns nothing from that error (it is not a bias). */
     const uint8_t boost = (s->recover_samples > 0u) ? 1u : 0u;
-    const int32_t rp_gain = (boost != 0u) ? 5 : 1;
+    const int32_t rp_gain = (boost != 0u) ? (int32_t)5 : (int32_t)1;
     for (unsigned i = 0u; i < 3u; i++) {
         /* the integral of ki * e is minus the bias */
         const int32_t inc = (boost != 0u) ? 0
