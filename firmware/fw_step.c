@@ -329,6 +329,19 @@ static void output_stage(const fw_config_t *cfg, const os_command_t *cmd, fw_out
     }
 }
 
+int fw_align(fw_t *fw, const fw_nav_t *nav)
+{
+    if (fw == NULL || nav == NULL || fw->ready == 0u) {
+        return 2;
+    }
+    const int rc = ht_dcm_align_to(&fw->dcm, &fw->dcm_state, nav->down_q14, nav->heading_north,
+                                   nav->heading_east);
+    if (rc == 0) {
+        fw->aligned = 1u;
+    }
+    return rc;
+}
+
 /* --- the step ---------------------------------------------------------------- */
 
 int fw_step(fw_t *fw, const fw_inputs_t *in, fw_output_t *out)

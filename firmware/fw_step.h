@@ -170,6 +170,12 @@ typedef struct {
  * then outputs no pulses. */
 int fw_init(fw_t *fw, const fw_config_t *cfg);
 
+/* Align the estimator to a known solution (its down row and nose direction),
+ * e.g. a simulator starting in flight: the next sample then does not align
+ * from its accelerometer. 0 = done; else ht_dcm_align_to's code (nothing
+ * changed). */
+int fw_align(fw_t *fw, const fw_nav_t *nav);
+
 /* One IMU period. Returns out->control_ran. NULL arguments: 0, nothing done. */
 int fw_step(fw_t *fw, const fw_inputs_t *in, fw_output_t *out);
 

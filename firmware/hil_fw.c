@@ -494,12 +494,15 @@ static void on_step(hil_fw_t *h)
 /* TRUTH: only inside a step that flies on it (else the step is broken). */
 static void on_truth(hil_fw_t *h)
 {
-    if (h->step_open == 0u || (h->step.flags & HIL_SF_USE_TRUTH) == 0u) {
+    if (h->step_open == 0u || (h->step.flags & (HIL_SF_USE_TRUTH | HIL_SF_ALIGN)) == 0u) {
         h->step_broken = 1u;
         return;
     }
     hil_truth_parse(h->rx.payload, &h->truth);
     h->step_truth = 1u;
+    if ((h->step.flags & HIL_SF_ALIGN) != 0u) {
+        (void)fw_align(&h->fw, &h->truth); /* before the step's first sample, as the SIL */
+    }
 }
 
 /* IMU: one sample, stepped now (not answered); beyond imu_count - 1 samples,
@@ -530,7 +533,7 @@ static void on_sensors(hil_fw_t *h)
     }
     const hil_step_t *s = &h->step;
     const uint8_t want_imu = (s->imu_count > 0u) ? (uint8_t)(s->imu_count - 1u) : 0u;
-    const uint8_t want_truth = ((s->flags & HIL_SF_USE_TRUTH) != 0u) ? 1u : 0u;
+    const uint8_t want_truth = ((s->flags & (HIL_SF_USE_TRUTH | HIL_SF_ALIGN)) != 0u) ? 1u : 0u;
     if (h->step_open == 0u || h->step_broken != 0u || seq != s->seq || h->step_imu != want_imu ||
         h->step_truth != want_truth) {
         h->step_open = 0u;

@@ -76,7 +76,8 @@
 #define HIL_SF_INVERTED      0x04u
 #define HIL_SF_TILT_CROSS    0x08u /* pitch method HT_PITCH_TILT_CROSS; else earth frame */
 #define HIL_SF_USE_TRUTH     0x10u /* fly on the TRUTH frame's solution (the estimator runs) */
-#define HIL_SF_ALL           0x1Fu
+#define HIL_SF_ALIGN         0x20u /* align the estimator to the TRUTH frame first (fw_align) */
+#define HIL_SF_ALL           0x3Fu
 
 /* STEP fresh bits: which slow sensor is new (given with the step's last sample) */
 #define HIL_FRESH_GPS      0x01u

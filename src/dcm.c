@@ -163,6 +163,24 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     return 0;
 }
 
+int ht_dcm_align_to(const ht_dcm_t *d, ht_dcm_state_t *s, const q14_t down_q14[3],
+                    q14_t nose_north_q14, q14_t nose_east_q14)
+{
+    if (down_q14 == NULL) {
+        return 2;
+    }
+    /* the specific force at rest is minus earth-down: Q14 -> Q16 */
+    const q16_t f[3] = {-4 * (int32_t)down_q14[0], -4 * (int32_t)down_q14[1],
+                        -4 * (int32_t)down_q14[2]};
+    const uint8_t valid = (nose_north_q14 != 0 || nose_east_q14 != 0) ? 1u : 0u;
+    int32_t cd = 0;
+    if (valid != 0u) {
+        cd = ht_dcm_bam_to_cdeg(ht_dcm_atan2_bam(nose_east_q14, nose_north_q14, NULL));
+        cd = (cd < 0) ? (cd + 36000) : cd;
+    }
+    return ht_dcm_align(d, s, f, valid, (uint16_t)((cd >= 36000) ? 0 : cd));
+}
+
 /* Clamp a sample to the sensors' full scales, flagging an axis at its limit. */
 static uint16_t clamp_sample(const ht_dcm_t *d, const ht_imu_sample_t *imu, q16_t gyro[3],
                              q16_t acc[3])

@@ -545,6 +545,9 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     in.guided = (b->modes_enabled != 0u) ? NULL : &guided;
     fw_nav_t truth;
     truth_solution(s, &truth);
+    if (s->align_to_truth != 0) {
+        (void)fw_align(&b->fw, &truth);
+    }
     in.rc_count = (uint8_t)SIL_RC_COUNT;
     for (int i = 0; i < SIL_RC_COUNT; ++i) {
         in.rc_us[i] = (uint16_t)to_fixed(c->rc_us[i], 1.0, 0, UINT16_MAX);

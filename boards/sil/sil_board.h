@@ -30,7 +30,7 @@
 extern "C" {
 #endif
 
-#define SIL_BOARD_ABI_VERSION 8 /* 8: raw sensors, the one firmware step (firmware/fw_step.h) */
+#define SIL_BOARD_ABI_VERSION 9 /* 8: raw sensors, the one firmware step; 9: align_to_truth */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -117,6 +117,9 @@ typedef struct {
     double north_m, east_m;
     double vel_north_m_s, vel_east_m_s;
     double heading_rad;
+    /* ABI 9: nonzero: before this step's samples, align the estimator to the
+     * truth above (a run that starts in flight: as if aligned before takeoff) */
+    int32_t align_to_truth;
 } sil_sensors_t;
 
 /* What the pilot / mission asks this step. */

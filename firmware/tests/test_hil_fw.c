@@ -638,7 +638,7 @@ static void test_bad_frames_are_never_acted_on(void)
 
     /* reserved bits, a count over the maximum, a fix over 3: NAK, no step */
     hil_step_t bad = x.step;
-    bad.flags = 0x20u;
+    bad.flags = 0x40u; /* the first reserved bit */
     hil_step_write(p, &bad);
     push_frame(HIL_ID_STEP, p, HIL_LEN_STEP);
     bad = x.step;

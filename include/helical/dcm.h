@@ -187,6 +187,16 @@ void ht_dcm_reset(ht_dcm_state_t *s);
 int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
                  uint8_t heading_valid, uint16_t heading_cdeg);
 
+/*
+ * Alignment to a known attitude: earth-down in body axes (Q14, any length
+ * above 0.5) and the nose's horizontal direction (north, east parts, Q14, any
+ * length; both 0: heading north), e.g. from another attitude source when the
+ * estimator starts in flight. As ht_dcm_align otherwise (zero bias). Returns
+ * 0, 1 for a down vector too short, 2 for NULL or an uninitialised d.
+ */
+int ht_dcm_align_to(const ht_dcm_t *d, ht_dcm_state_t *s, const q14_t down_q14[3],
+                    q14_t nose_north_q14, q14_t nose_east_q14);
+
 /* One IMU sample. NULL d, s or imu, or an uninitialised d: nothing happens.
  * aid may be NULL (no aiding). Gyro and accelerometer axes are clamped to
  * their full scales (flagged). */

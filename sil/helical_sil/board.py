@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-ABI_VERSION = 8
+ABI_VERSION = 9
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
@@ -111,6 +111,8 @@ class SilSensors(ctypes.Structure):
             "dcm_x", "dcm_y", "dcm_z", "gyro_x", "gyro_y", "gyro_z",
             "airspeed_m_s", "altitude_m", "climb_m_s",
             "north_m", "east_m", "vel_north_m_s", "vel_east_m_s", "heading_rad")),
+        # ABI 9: align the estimator to the truth above before this step's samples
+        ("align_to_truth", _I),
     ]
 
 

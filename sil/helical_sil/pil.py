@@ -62,6 +62,7 @@ RX_BUDGET = 224
 
 SF_ALTITUDE_HOLD, SF_SPEED_HOLD, SF_INVERTED, SF_TILT_CROSS = 0x01, 0x02, 0x04, 0x08
 SF_USE_TRUTH = 0x10
+SF_ALIGN = 0x20  # align the estimator to the TRUTH frame before the step's samples
 FRESH_GPS, FRESH_AIRSPEED, FRESH_BARO = 0x01, 0x02, 0x04
 ST_CONTROL_RAN, ST_FAILSAFE, ST_GUARD_ENGAGED = 0x01, 0x02, 0x04
 
@@ -291,7 +292,7 @@ def step_payload(seq: int, s: Any, c: Any) -> bytes:
     thr = 0.0 if thr < 0.0 else (1.0 if thr > 1.0 else thr)
     flags = ((SF_ALTITUDE_HOLD if c.altitude_hold else 0) | (SF_SPEED_HOLD if c.speed_hold else 0)
              | (SF_INVERTED if c.inverted else 0) | (SF_TILT_CROSS if c.pitch_mode else 0)
-             | (SF_USE_TRUTH if s.use_truth else 0))
+             | (SF_USE_TRUTH if s.use_truth else 0) | (SF_ALIGN if s.align_to_truth else 0))
     fresh = ((FRESH_GPS if s.gps_fresh else 0) | (FRESH_AIRSPEED if s.airspeed_fresh else 0)
              | (FRESH_BARO if s.baro_fresh else 0))
     p = (seq & 0xFFFFFFFF).to_bytes(4, "little")
@@ -324,7 +325,7 @@ def step_frames(seq: int, s: Any, c: Any) -> list[bytes]:
     IMU frame per sample but the last, SENSORS (seq and the last sample)."""
     n = imu_count(s)
     frames = [encode(ID_STEP, step_payload(seq, s, c))]
-    if s.use_truth:
+    if s.use_truth or s.align_to_truth:
         frames.append(encode(ID_TRUTH, truth_payload(s)))
     frames += [encode(ID_IMU, imu_payload(s, i)) for i in range(n - 1)]
     last = imu_payload(s, n - 1) if n > 0 else bytes(LEN_IMU)

@@ -518,6 +518,9 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         sens.north_m, sens.east_m, sens.vel_north_m_s, sens.vel_east_m_s = north, east, vn, ve
         sens.heading_rad = psi
         sens.use_truth = int(use_truth)
+        # the run starts in flight: the estimator starts aligned to JSBSim's
+        # attitude, as if aligned on the ground before takeoff (zero bias)
+        sens.align_to_truth = int(k == 0)
         _raw_sensors(sc, sens, model, sensors_mod.read_fdm_state(fdm), t, imu_batch, imu_fifo,
                      faults, imu_bias, imu_rng)
         a = board.step()

@@ -200,6 +200,7 @@ class _Sensors:
     gps_vel_ned_m_s = (110.0, 0.0, 0.0)
     airspeed_fresh, pitot_m_s, baro_fresh, baro_alt_m = 1, 110.0, 1, 1500.0
     use_truth = 1
+    align_to_truth = 0
     dcm_x, dcm_y, dcm_z = 0.0, 0.0, 1.0
     gyro_x = gyro_y = gyro_z = 0.0
     airspeed_m_s, altitude_m, climb_m_s = 110.0, 1500.0, 0.0
