@@ -133,10 +133,11 @@ static uint16_t course_cdeg(int32_t vn, int32_t ve)
 
 static int32_t ground_speed2(const board_gps_t *g)
 {
-    /* in (cm/s)^2 / 256: fits int32 up to 740 m/s */
-    const int32_t vn = g->vel_ned_cm_s[0] / 16;
-    const int32_t ve = g->vel_ned_cm_s[1] / 16;
-    return vn * vn + ve * ve;
+    /* in (cm/s)^2 / 256, each component held to +/-655 m/s first (any int32
+     * comes in from a driver or a link): at most 2 * 4096^2 */
+    const int32_t vn = q_clamp32(g->vel_ned_cm_s[0], -65535, 65535) / 16;
+    const int32_t ve = q_clamp32(g->vel_ned_cm_s[1], -65535, 65535) / 16;
+    return (vn * vn) + (ve * ve);
 }
 
 static void estimate(fw_t *fw, const fw_inputs_t *in)
@@ -181,7 +182,7 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
         ht_geo_to_local(&fw->home, g->lat_e7, g->lon_e7, &fw->nav.north_cm, &fw->nav.east_cm);
         fw->nav.vel_north_cm_s = g->vel_ned_cm_s[0];
         fw->nav.vel_east_cm_s = g->vel_ned_cm_s[1];
-        fw->nav.climb_cm_s = -g->vel_ned_cm_s[2];
+        fw->nav.climb_cm_s = q_sub_sat32(0, g->vel_ned_cm_s[2]); /* INT32_MIN: no overflow */
     }
     if (in->sensors.baro_fresh != 0u) {
         fw->nav.altitude_cm = in->sensors.baro_alt_cm;
@@ -217,7 +218,8 @@ static void navigation(fw_t *fw, const fw_inputs_t *in, const ht_dcm_output_t *e
      * per control step, filtered over 32 steps (0.8 s at 40 Hz). */
     if (in->sensors.gps.fix < 3u && fw->have_baro != 0u) {
         const int32_t rate = fw->cfg->modes.rate_hz;
-        const int32_t raw = q_clamp32(n->altitude_cm - fw->baro_prev_cm, -100000, 100000) * rate;
+        const int32_t raw =
+            q_clamp32(q_sub_sat32(n->altitude_cm, fw->baro_prev_cm), -100000, 100000) * rate;
         fw->baro_climb_cm_s += (raw - fw->baro_climb_cm_s) / 32;
         n->climb_cm_s = fw->baro_climb_cm_s;
     }

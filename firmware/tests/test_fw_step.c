@@ -190,6 +190,28 @@ static void test_pilot_path_rc_loss_policy(void)
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_RTH, out.modes.mode);
 }
 
+/* Any int32 from a GPS driver or the link: a velocity or a position at the
+ * type's ends, a baro altitude jumping from one end to the other. Bounded
+ * answers, no overflow (the sanitized build traps one). */
+static void test_extreme_gps_and_baro_values(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    in.sensors.gps.fresh = 1u;
+    in.sensors.gps.fix = 3u;
+    const int32_t ends[4] = {INT32_MIN, INT32_MAX, -1, 0};
+    for (int k = 0; k < 4; ++k) {
+        for (int i = 0; i < 3; ++i) {
+            in.sensors.gps.vel_ned_cm_s[i] = ends[(k + i) % 4];
+        }
+        in.sensors.gps.lat_e7 = ends[k];
+        in.sensors.gps.lon_e7 = ends[(k + 1) % 4];
+        in.sensors.baro_alt_cm = ends[(k + 2) % 4];
+        (void)run_until_control();
+        TEST_ASSERT_EQUAL_UINT8(5u, out.pulse_count);
+        TEST_ASSERT_TRUE(out.nav.airspeed_cm_s >= 0);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -199,5 +221,6 @@ int main(void)
     RUN_TEST(test_imu_loss_gives_the_failsafe_pulses);
     RUN_TEST(test_guided_path_is_the_library_chain);
     RUN_TEST(test_pilot_path_rc_loss_policy);
+    RUN_TEST(test_extreme_gps_and_baro_values);
     return UNITY_END();
 }
