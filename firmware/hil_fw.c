@@ -349,7 +349,7 @@ void hil_step_parse(const uint8_t *p, hil_step_t *s)
 void hil_truth_write(uint8_t *p, const fw_nav_t *n)
 {
     for (unsigned k = 0u; k < 3u; ++k) {
-        hil_put_i16(&p[2u * k], n->down_q14[k]);
+        hil_put_i16(&p[(size_t)2u * k], n->down_q14[k]);
         hil_put_i16(&p[6u + 2u * k], n->gyro_q11_rad_s[k]);
     }
     hil_put_i16(&p[12], n->airspeed_cm_s);
@@ -367,7 +367,7 @@ void hil_truth_parse(const uint8_t *p, fw_nav_t *n)
 {
     (void)memset(n, 0, sizeof *n);
     for (unsigned k = 0u; k < 3u; ++k) {
-        n->down_q14[k] = hil_get_i16(&p[2u * k]);
+        n->down_q14[k] = hil_get_i16(&p[(size_t)2u * k]);
         n->gyro_q11_rad_s[k] = hil_get_i16(&p[6u + 2u * k]);
     }
     n->airspeed_cm_s = hil_get_i16(&p[12]);
@@ -384,7 +384,7 @@ void hil_truth_parse(const uint8_t *p, fw_nav_t *n)
 void hil_imu_write(uint8_t *p, const ht_imu_sample_t *s)
 {
     for (unsigned k = 0u; k < 3u; ++k) {
-        hil_put_i32(&p[4u * k], s->gyro_rad_s[k]);
+        hil_put_i32(&p[(size_t)4u * k], s->gyro_rad_s[k]);
         hil_put_i32(&p[12u + 4u * k], s->accel_g[k]);
     }
 }
@@ -392,7 +392,7 @@ void hil_imu_write(uint8_t *p, const ht_imu_sample_t *s)
 void hil_imu_parse(const uint8_t *p, ht_imu_sample_t *s)
 {
     for (unsigned k = 0u; k < 3u; ++k) {
-        s->gyro_rad_s[k] = hil_get_i32(&p[4u * k]);
+        s->gyro_rad_s[k] = hil_get_i32(&p[(size_t)4u * k]);
         s->accel_g[k] = hil_get_i32(&p[12u + 4u * k]);
     }
 }
