@@ -36,7 +36,13 @@
 /* Alignment refuses a gravity reference below 0.5 g. */
 #define ALIGN_MIN_G_Q16 ((int32_t)32768)
 /* Flags that survive from one sample to the next. */
-#define FLAGS_KEPT ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
+/* The integral (the bias estimate) learns only while every measured body
+ * rate is within 20 deg/s (0.349 rad/s, Q16): in a roll reversal or a pull the
+ * gravity reference misses the body-axis accelerations of the sideslip and
+ * the angle of attack building up, and a bias is slow enough to wait for
+ * the next quasi-steady second (a steady turn is 3-15 deg/s) */
+#define BIAS_LEARN_RATE_MAX_Q16 ((int32_t)22876)
+#define FLAGS_KEPT              ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
 
 static int32_t clamp32(int32_t x, int32_t lim)
 {
@@ -158,6 +164,7 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     }
     zero3(s->bias);
     zero3(s->omega_corr);
+    s->g_filt_valid = 0u; /* the filters restart from the new attitude */
     const uint32_t kept = (uint32_t)s->flags & (uint32_t)HT_DCM_F_RENORM_FAILED;
     s->flags = (uint16_t)(kept | (uint32_t)HT_DCM_F_ALIGNED);
     return 0;
@@ -357,6 +364,11 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_d
                 : qi_add_sat32(s->g_filt_q24[i],
                                qi_rshift_round(qi_sub_sat32(g_q24, s->g_filt_q24[i]), 3u));
         g[i] = qi_rshift_round(s->g_filt_q24[i], 8u);
+        s->r2_filt_q30[i] =
+            (s->g_filt_valid == 0u)
+                ? s->r[2][i]
+                : qi_add_sat32(s->r2_filt_q30[i],
+                               qi_rshift_round(qi_sub_sat32(s->r[2][i], s->r2_filt_q30[i]), 3u));
     }
     s->g_filt_valid = 1u;
     int32_t u[3];
@@ -371,8 +383,12 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_d
     for (unsigned i = 0u; i < 3u; i++) {
         dm[i] = u[i] * 4; /* Q28 -> Q30, |u| <= 2^28 */
     }
+    /* R[2] through the same low-pass, so that the pair compared is of the
+     * same instant: against the unfiltered row, a roll at 60 deg/s would read
+     * as a 4-degree error of the estimate (the filter's 8 samples at 120 Hz)
+     * and teach the integral a false roll bias at every reversal */
     int32_t c[3];
-    cross_q30(dm, s->r[2], c);
+    cross_q30(dm, s->r2_filt_q30, c);
     for (unsigned i = 0u; i < 3u; i++) {
         e[i] = qi_mul32(c[i], wt, 16u);
     }
@@ -393,6 +409,33 @@ static int32_t yaw_between(int32_t an, int32_t ae, int32_t bn, int32_t be)
         return (cr >= 0) ? Q30_ONE : -Q30_ONE;
     }
     return cr;
+}
+
+/*
+ * The horizontal direction (unit, Q28) of the air velocity in the plane of
+ * symmetry (air_velocity: the airspeed, else the GPS speed, and the GPS
+ * climb) rotated into earth axes. Left as it is (the nose's direction) when
+ * that velocity has no horizontal part.
+ */
+static void velocity_heading(const int32_t r[3][3], const ht_dcm_aiding_t *a, int32_t gps_speed,
+                             int32_t *dn, int32_t *de)
+{
+    const int32_t v = (a->airspeed_valid != 0u && a->airspeed_cm_s > 0) ? (int32_t)a->airspeed_cm_s
+                                                                        : clamp32(gps_speed, 32767);
+    if (v <= 0) {
+        return;
+    }
+    int32_t v_q8[3];
+    air_velocity(r, v, -clamp32(a->vel_ned_cm_s[2], 32767), v_q8);
+    /* |R| <= 1.5 and |v| < 2^23 (Q8 cm/s): each product and the sums fit */
+    const int32_t hn = qi_mul32(r[0][1], v_q8[1], 30u) + qi_mul32(r[0][2], v_q8[2], 30u);
+    const int32_t he = qi_mul32(r[1][1], v_q8[1], 30u) + qi_mul32(r[1][2], v_q8[2], 30u);
+    int32_t un;
+    int32_t ue;
+    if (q_unit2_q28(hn, he, &un, &ue) != 0) {
+        *dn = un;
+        *de = ue;
+    }
 }
 
 /* The yaw error in Q30 from the GPS course or the magnetometer, 0 without. */
@@ -419,6 +462,11 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
                  * and its direction is ill-conditioned there */
                 const int32_t nh_q30 =
                     qi_add_sat32(qi_mul32(r[0][1], nn, 28u), qi_mul32(r[1][1], ne, 28u));
+                /* the course is the velocity's direction, not the nose's: in
+                 * a banked turn the angle of attack points the nose inside
+                 * the path by alpha sin(phi) (1.3 deg at 2.3 deg and 35 deg in
+                 * the c172p SIL), which the nose would take for a yaw error */
+                velocity_heading(r, a, speed, &nn, &ne);
                 return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
@@ -545,9 +593,17 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
      * and the integral learns nothing from that error (it is not a bias). */
     const uint8_t boost = (s->recover_samples > 0u) ? 1u : 0u;
     const int32_t rp_gain = (boost != 0u) ? (int32_t)5 : (int32_t)1;
+    uint32_t learn = (boost != 0u) ? 0u : 1u;
+    for (unsigned i = 0u; i < 3u; i++) {
+        /* the measured rate: the gate does not depend on the estimate */
+        const int32_t w = gyro[i];
+        if (w > BIAS_LEARN_RATE_MAX_Q16 || w < -BIAS_LEARN_RATE_MAX_Q16) {
+            learn = 0u;
+        }
+    }
     for (unsigned i = 0u; i < 3u; i++) {
         /* the integral of ki * e is minus the bias */
-        const int32_t inc = (boost != 0u) ? 0
+        const int32_t inc = (learn == 0u) ? 0
                                           : qi_add_sat32(qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u),
                                                          qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
         const int32_t b = clamp32(qi_sub_sat32(s->bias[i], inc), bmax);
@@ -613,6 +669,7 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     propagate(s->r, theta);
     if (renormalize(s->r) != 0) {
         recover(s->r, acc, nose_n, nose_e);
+        s->g_filt_valid = 0u;
         flags |= (uint16_t)HT_DCM_F_RENORM_FAILED;
     }
     s->flags = flags;

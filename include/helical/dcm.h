@@ -162,6 +162,7 @@ typedef struct {
     int16_t speed_prev_cm_s;  /* the airspeed of the previous sample ... */
     uint8_t speed_prev_valid; /* ... when it was valid */
     int32_t g_filt_q24[3];    /* the gravity reference, low-passed (vibration), g, Q24 */
+    int32_t r2_filt_q30[3];   /* R[2] through the same low-pass, Q30 */
     uint8_t g_filt_valid;
     uint16_t recover_samples; /* samples left of the stronger correction after a gyro
                                  saturation (one second at the IMU rate) */

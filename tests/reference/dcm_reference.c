@@ -89,6 +89,7 @@ int dcmr_align(dcmr_state_t *s, const double f[3], double psi)
     }
     s->bias[0] = s->bias[1] = s->bias[2] = 0.0;
     s->aligned = 1;
+    s->g_filt_valid = 0;
     return 0;
 }
 
@@ -99,6 +100,18 @@ static double yaw_between(double an, double ae, double bn, double be)
         return cr >= 0 ? 1.0 : -1.0;
     }
     return cr;
+}
+
+/* the air velocity in the plane of symmetry (dcm.c air_velocity), cm/s */
+static void air_velocity(const dcmr_state_t *s, double vv, double climb, double v[3])
+{
+    double vz = 0.0;
+    if (fabs(s->r[2][2]) >= 0.25) {
+        vz = clampd(clampd(-climb - vv * s->r[2][1], 65535.0) / s->r[2][2], vv / 2);
+    }
+    v[0] = 0.0;
+    v[1] = vv - vz * vz / (2 * vv);
+    v[2] = vz;
 }
 
 static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_dcm_aiding_t *a)
@@ -113,7 +126,16 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
         const double vn = a->vel_ned_cm_s[0], ve = a->vel_ned_cm_s[1];
         const double sp = hypot(vn, ve);
         if (sp > p->gps_min_speed_cm_s) {
-            return nl * yaw_between(nn, ne, vn / sp, ve / sp);
+            /* the air velocity's direction (dcm.c velocity_heading) */
+            const double vv =
+                (a->airspeed_valid && a->airspeed_cm_s > 0) ? a->airspeed_cm_s : fmin(sp, 32767.0);
+            double v[3];
+            air_velocity(s, vv, -clampd(a->vel_ned_cm_s[2], 32767.0), v);
+            const double hn = s->r[0][1] * v[1] + s->r[0][2] * v[2];
+            const double he = s->r[1][1] * v[1] + s->r[1][2] * v[2];
+            const double hl = hypot(hn, he);
+            const double dn = hl > 0.0 ? hn / hl : nn, de = hl > 0.0 ? he / hl : ne;
+            return nl * yaw_between(dn, de, vn / sp, ve / sp);
         }
     }
     if (a->mag_valid) {
@@ -166,13 +188,7 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
             vv = fmin(sqrt(s2), 32767.0);
         }
         if (vv > 0.0) {
-            const double climb = gps ? -clampd(a->vel_ned_cm_s[2], 32767.0) : 0.0;
-            double vz = 0.0;
-            if (fabs(s->r[2][2]) >= 0.25) {
-                vz = clampd(clampd(-climb - vv * s->r[2][1], 65535.0) / s->r[2][2], vv / 2);
-            }
-            v[1] = vv - vz * vz / (2 * vv);
-            v[2] = vz;
+            air_velocity(s, vv, gps ? -clampd(a->vel_ned_cm_s[2], 32767.0) : 0.0, v);
         }
     }
     for (int i = 0; i < 3; i++) {
@@ -200,6 +216,8 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     for (int i = 0; i < 3; i++) {
         s->g_filt[i] = s->g_filt_valid ? s->g_filt[i] + (g[i] - s->g_filt[i]) / 8.0 : g[i];
         g[i] = s->g_filt[i];
+        s->r2_filt[i] =
+            s->g_filt_valid ? s->r2_filt[i] + (s->r[2][i] - s->r2_filt[i]) / 8.0 : s->r[2][i];
     }
     s->g_filt_valid = 1;
     const double gm = sqrt(dot(g, g));
@@ -211,17 +229,24 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     double erp[3] = {0, 0, 0};
     if (w > 0.0) {
         const double dm[3] = {g[0] / gm, g[1] / gm, g[2] / gm};
-        cross(dm, s->r[2], erp);
+        cross(dm, s->r2_filt, erp);
         for (int i = 0; i < 3; i++) {
             erp[i] *= w;
         }
     }
     const double ey = yaw_error(p, s, a);
+    /* the integral learns below 20 deg/s on every axis (dcm.c) */
+    int learn = 1;
+    for (int i = 0; i < 3; i++) {
+        learn &= fabs(gyro[i]) <= 22876.0 / 65536.0;
+    }
     double th[3];
     for (int i = 0; i < 3; i++) {
         const double eyb = ey * s->r[2][i];
-        s->bias[i] =
-            clampd(s->bias[i] - (p->ki_rp * erp[i] + p->ki_yaw * eyb) * p->dt, p->bias_max);
+        if (learn) {
+            s->bias[i] =
+                clampd(s->bias[i] - (p->ki_rp * erp[i] + p->ki_yaw * eyb) * p->dt, p->bias_max);
+        }
         th[i] = clampd((gyro[i] - s->bias[i] + p->kp_rp * erp[i] + p->kp_yaw * eyb) * p->dt, 0.5);
     }
     /* propagate, second order: r <- r + c + (c x theta) / 2, c = r x theta */

@@ -24,7 +24,8 @@ typedef struct {
     double bias[3];
     double rate[3];
     int aligned;
-    double g_filt[3]; /* the vibration low-pass of the gravity reference */
+    double g_filt[3];  /* the vibration low-pass of the gravity reference */
+    double r2_filt[3]; /* R[2] through the same low-pass */
     int g_filt_valid;
     double accel_fwd;  /* filtered rate of change of the airspeed, g */
     double speed_prev; /* the previous sample's airspeed, cm/s (when valid) */
