@@ -593,7 +593,10 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
      * and the integral learns nothing from that error (it is not a bias). */
     const uint8_t boost = (s->recover_samples > 0u) ? 1u : 0u;
     const int32_t rp_gain = (boost != 0u) ? (int32_t)5 : (int32_t)1;
-    uint32_t learn = (boost != 0u) ? 0u : 1u;
+    uint32_t learn = 1u;
+    if (boost != 0u) {
+        learn = 0u;
+    }
     for (unsigned i = 0u; i < 3u; i++) {
         /* the measured rate: the gate does not depend on the estimate */
         const int32_t w = gyro[i];
