@@ -252,34 +252,34 @@ static void air_velocity(const int32_t r[3][3], int32_t v, int32_t climb, int32_
     v_q8[2] = vz_q8;
 }
 
-/* The velocity for the centripetal term, body axes, cm/s in Q8 (0 when none):
- * the air velocity (airspeed and climb), else with CF_AUTO and a GPS fix the
- * GPS ground velocity rotated into the body. */
-static uint16_t cf_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_dcm_aiding_t *a,
-                            int32_t v_q8[3])
+/*
+ * The air velocity in body axes, cm/s in Q8 (0 when none), computed once per
+ * sample for the centripetal term and the GPS course: the airspeed, else (no
+ * airspeed, a dead pitot) the GPS speed; the climb from the GPS. With
+ * CF_AIRSPEED the GPS is not used. Returns 1 when the GPS was used.
+ */
+static uint8_t body_velocity(const ht_dcm_t *d, const int32_t r[3][3], const ht_dcm_aiding_t *a,
+                             int32_t v_q8[3])
 {
     zero3(v_q8);
-    if (d->p.centripetal == (uint8_t)HT_DCM_CF_OFF) {
-        return 0u;
-    }
-    const uint8_t gps = (d->p.centripetal == (uint8_t)HT_DCM_CF_AUTO && a->gps_fix != 0u) ? 1u : 0u;
+    const uint8_t gps =
+        (d->p.centripetal != (uint8_t)HT_DCM_CF_AIRSPEED && a->gps_fix != 0u) ? 1u : 0u;
     const int32_t climb = (gps != 0u) ? -clamp32(a->vel_ned_cm_s[2], 32767) : 0;
     if (a->airspeed_valid != 0u && a->airspeed_cm_s > 0) {
         air_velocity(r, a->airspeed_cm_s, climb, v_q8);
-        return (gps != 0u) ? (uint16_t)HT_DCM_F_CF_GPS : 0u;
+        return gps;
     }
     if (gps != 0u) {
-        /* no airspeed (a dead pitot): the GPS speed in its place, not the GPS
-         * velocity rotated into the body, whose heading error would tilt the
-         * reference (a 3-degree yaw error is a 0.06 g side force at 1 g) */
+        /* the GPS speed in the airspeed's place, not the GPS velocity rotated
+         * into the body, whose heading error would tilt the reference (a
+         * 3-degree yaw error is a 0.06 g side force at 1 g) */
         const uint32_t sq = gps_speed2_q2(a);
         const int32_t v = clamp32((int32_t)q_isqrt32(sq) * 2, 32767);
         if (v > 0) {
             air_velocity(r, v, climb, v_q8);
         }
-        return (uint16_t)HT_DCM_F_CF_GPS;
     }
-    return 0u;
+    return gps;
 }
 
 /*
@@ -303,6 +303,14 @@ static void forward_acceleration(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_
     s->speed_prev_cm_s = a->airspeed_cm_s;
 }
 
+/* One step of the 8-sample low-pass y += (x - y) / 8 (y = x when the filter
+ * restarts); returns the new y. */
+static int32_t lowpass8(int32_t *y, int32_t x, uint8_t running)
+{
+    *y = (running == 0u) ? x : qi_add_sat32(*y, qi_rshift_round(qi_sub_sat32(x, *y), 3u));
+    return *y;
+}
+
 /* The gravity reference's weight in Q16 for a magnitude in g (Q16). */
 static int32_t accel_weight_q16(const ht_dcm_t *d, int32_t mag_q16)
 {
@@ -324,16 +332,18 @@ static int32_t accel_weight_q16(const ht_dcm_t *d, int32_t mag_q16)
  * dm = (w x v - f) / |w x v - f| against R's bottom row, e = dm x R[2]: a
  * rotation about e turns R[2] toward dm. Returns the flags it sets.
  */
-static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
-                                const q16_t acc[3], uint16_t flags, int32_t e[3])
+static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const int32_t v_q8[3],
+                                uint8_t v_gps, const q16_t acc[3], uint16_t flags, int32_t e[3])
 {
     zero3(e);
-    int32_t v_q8[3];
-    const ht_dcm_state_t *cs = s; /* the matrix is read only here */
-    uint16_t f = cf_velocity(d, cs->r, a, v_q8);
-    int32_t v_gs[3]; /* g*s, Q16 */
-    for (unsigned i = 0u; i < 3u; i++) {
-        v_gs[i] = qi_mul32(v_q8[i], CM_S_Q8_TO_GS_Q16_Q24, 32u);
+    /* the centripetal term's velocity: none with CF_OFF */
+    const uint8_t cf = (d->p.centripetal != (uint8_t)HT_DCM_CF_OFF) ? 1u : 0u;
+    uint16_t f = (cf != 0u && v_gps != 0u) ? (uint16_t)HT_DCM_F_CF_GPS : 0u;
+    int32_t v_gs[3] = {0, 0, 0}; /* g*s, Q16 */
+    if (cf != 0u) {
+        for (unsigned i = 0u; i < 3u; i++) {
+            v_gs[i] = qi_mul32(v_q8[i], CM_S_Q8_TO_GS_Q16_Q24, 32u);
+        }
     }
     /* w x v in g (Q16): |w| <= 65 rad/s, |v| <= 117 g*s: fits */
     const int32_t *w = s->rate_rad_s;
@@ -358,17 +368,8 @@ static uint16_t rollpitch_error(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_d
      * would round to nothing and leave the reference a few LSB off. */
     for (unsigned i = 0u; i < 3u; i++) {
         const int32_t g_q24 = clamp32(g[i], 0x7FFFFF) * 256; /* within +/-128 g */
-        s->g_filt_q24[i] =
-            (s->g_filt_valid == 0u)
-                ? g_q24
-                : qi_add_sat32(s->g_filt_q24[i],
-                               qi_rshift_round(qi_sub_sat32(g_q24, s->g_filt_q24[i]), 3u));
-        g[i] = qi_rshift_round(s->g_filt_q24[i], 8u);
-        s->r2_filt_q30[i] =
-            (s->g_filt_valid == 0u)
-                ? s->r[2][i]
-                : qi_add_sat32(s->r2_filt_q30[i],
-                               qi_rshift_round(qi_sub_sat32(s->r[2][i], s->r2_filt_q30[i]), 3u));
+        g[i] = qi_rshift_round(lowpass8(&s->g_filt_q24[i], g_q24, s->g_filt_valid), 8u);
+        (void)lowpass8(&s->r2_filt_q30[i], s->r[2][i], s->g_filt_valid);
     }
     s->g_filt_valid = 1u;
     int32_t u[3];
@@ -412,22 +413,13 @@ static int32_t yaw_between(int32_t an, int32_t ae, int32_t bn, int32_t be)
 }
 
 /*
- * The horizontal direction (unit, Q28) of the air velocity in the plane of
- * symmetry (air_velocity: the airspeed, else the GPS speed, and the GPS
- * climb) rotated into earth axes. Left as it is (the nose's direction) when
- * that velocity has no horizontal part.
+ * The horizontal direction (unit, Q28) of the body air velocity v (Q8 cm/s)
+ * rotated into earth axes. Left as it is (the nose's direction) when v has
+ * no horizontal part (or is zero: no speed known).
  */
-static void velocity_heading(const int32_t r[3][3], const ht_dcm_aiding_t *a, int32_t gps_speed,
-                             int32_t *dn, int32_t *de)
+static void velocity_heading(const int32_t r[3][3], const int32_t v_q8[3], int32_t *dn, int32_t *de)
 {
-    const int32_t v = (a->airspeed_valid != 0u && a->airspeed_cm_s > 0) ? (int32_t)a->airspeed_cm_s
-                                                                        : clamp32(gps_speed, 32767);
-    if (v <= 0) {
-        return;
-    }
-    int32_t v_q8[3];
-    air_velocity(r, v, -clamp32(a->vel_ned_cm_s[2], 32767), v_q8);
-    /* |R| <= 1.5 and |v| < 2^23 (Q8 cm/s): each product and the sums fit */
+    /* v = [0, vy, vz], |R| <= 1.5 and |v| < 2^23: each product and the sums fit */
     const int32_t hn = qi_mul32(r[0][1], v_q8[1], 30u) + qi_mul32(r[0][2], v_q8[2], 30u);
     const int32_t he = qi_mul32(r[1][1], v_q8[1], 30u) + qi_mul32(r[1][2], v_q8[2], 30u);
     int32_t un;
@@ -440,7 +432,7 @@ static void velocity_heading(const int32_t r[3][3], const ht_dcm_aiding_t *a, in
 
 /* The yaw error in Q30 from the GPS course or the magnetometer, 0 without. */
 static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
-                         uint16_t *flags)
+                         const int32_t v_q8[3], uint16_t *flags)
 {
     const int32_t(*r)[3] = s->r;
     int32_t nn;
@@ -466,7 +458,7 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
                  * a banked turn the angle of attack points the nose inside
                  * the path by alpha sin(phi) (1.3 deg at 2.3 deg and 35 deg in
                  * the c172p SIL), which the nose would take for a yaw error */
-                velocity_heading(r, a, speed, &nn, &ne);
+                velocity_heading(r, v_q8, &nn, &ne);
                 return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
@@ -659,8 +651,11 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     } else {
         /* no saturation in the last second */
     }
-    flags |= rollpitch_error(d, s, a, acc, flags, e_rp);
-    const int32_t ey = yaw_error(d, s, a, &flags);
+    int32_t v_q8[3];
+    const ht_dcm_state_t *cs = s; /* the matrix is read only there */
+    const uint8_t v_gps = body_velocity(d, cs->r, a, v_q8);
+    flags |= rollpitch_error(d, s, v_q8, v_gps, acc, flags, e_rp);
+    const int32_t ey = yaw_error(d, s, a, v_q8, &flags);
     int32_t e_yaw[3]; /* about the earth vertical: along R[2] in body axes */
     for (unsigned i = 0u; i < 3u; i++) {
         e_yaw[i] = qi_mul32(ey, s->r[2][i], 30u);

@@ -114,7 +114,8 @@ static void air_velocity(const dcmr_state_t *s, double vv, double climb, double 
     v[2] = vz;
 }
 
-static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_dcm_aiding_t *a)
+static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_dcm_aiding_t *a,
+                        const double v[3])
 {
     const double nn0 = s->r[0][1], ne0 = s->r[1][1];
     const double nl = hypot(nn0, ne0);
@@ -127,10 +128,6 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
         const double sp = hypot(vn, ve);
         if (sp > p->gps_min_speed_cm_s) {
             /* the air velocity's direction (dcm.c velocity_heading) */
-            const double vv =
-                (a->airspeed_valid && a->airspeed_cm_s > 0) ? a->airspeed_cm_s : fmin(sp, 32767.0);
-            double v[3];
-            air_velocity(s, vv, -clampd(a->vel_ned_cm_s[2], 32767.0), v);
             const double hn = s->r[0][1] * v[1] + s->r[0][2] * v[2];
             const double he = s->r[1][1] * v[1] + s->r[1][2] * v[2];
             const double hl = hypot(hn, he);
@@ -170,14 +167,13 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     for (int i = 0; i < 3; i++) {
         s->rate[i] = gyro[i] - s->bias[i];
     }
-    /* gravity reference: (w x v - f) / |.|, v in g*s */
-    double v[3] = {0, 0, 0};
+    /* the body air velocity (dcm.c body_velocity), cm/s: the airspeed, or the
+     * GPS speed when there is none; the GPS climb (neither with CF_AIRSPEED) */
+    double v_air[3] = {0, 0, 0};
     {
-        /* the air velocity in the plane of symmetry (dcm.c air_velocity), from
-         * the airspeed, or the GPS speed when there is none */
-        const int gps = p->centripetal == HT_DCM_CF_AUTO && a->gps_fix;
+        const int gps = p->centripetal != HT_DCM_CF_AIRSPEED && a->gps_fix;
         double vv = 0.0;
-        if (p->centripetal != HT_DCM_CF_OFF && a->airspeed_valid && a->airspeed_cm_s > 0) {
+        if (a->airspeed_valid && a->airspeed_cm_s > 0) {
             vv = a->airspeed_cm_s;
         } else if (gps) {
             double s2 = 0.0;
@@ -188,8 +184,13 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
             vv = fmin(sqrt(s2), 32767.0);
         }
         if (vv > 0.0) {
-            air_velocity(s, vv, gps ? -clampd(a->vel_ned_cm_s[2], 32767.0) : 0.0, v);
+            air_velocity(s, vv, gps ? -clampd(a->vel_ned_cm_s[2], 32767.0) : 0.0, v_air);
         }
+    }
+    /* gravity reference: (w x v - f) / |.|, v in g*s (none with CF_OFF) */
+    double v[3] = {0, 0, 0};
+    if (p->centripetal != HT_DCM_CF_OFF) {
+        memcpy(v, v_air, sizeof v);
     }
     for (int i = 0; i < 3; i++) {
         v[i] /= G_CM_S2;
@@ -234,7 +235,7 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
             erp[i] *= w;
         }
     }
-    const double ey = yaw_error(p, s, a);
+    const double ey = yaw_error(p, s, a, v_air);
     /* the integral learns below 20 deg/s on every axis (dcm.c) */
     int learn = 1;
     for (int i = 0; i < 3; i++) {

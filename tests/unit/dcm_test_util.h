@@ -89,4 +89,19 @@ static inline void dt_gravity_body(double r[3][3], double f[3])
     }
 }
 
+/* The fixture of the drift-correction and API tests: the estimator, its
+ * state and its parameters, back at the defaults before every test (Unity
+ * calls setUp and tearDown around each one). */
+#define DT_DEFAULT_FIXTURE()                                                                       \
+    static ht_dcm_t dcm;                                                                           \
+    static ht_dcm_state_t st;                                                                      \
+    static ht_dcm_params_t prm;                                                                    \
+    void setUp(void)                                                                               \
+    {                                                                                              \
+        ht_dcm_params_default(&prm);                                                               \
+        dt_init(&dcm, &prm);                                                                       \
+        ht_dcm_reset(&st);                                                                         \
+    }                                                                                              \
+    void tearDown(void) {}
+
 #endif /* DCM_TEST_UTIL_H */

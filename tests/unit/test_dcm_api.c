@@ -11,18 +11,7 @@
 
 #include "../../src/dcm_trig.h"
 
-static ht_dcm_t dcm;
-static ht_dcm_state_t st;
-static ht_dcm_params_t prm;
-
-void setUp(void)
-{
-    ht_dcm_params_default(&prm);
-    dt_init(&dcm, &prm);
-    ht_dcm_reset(&st);
-}
-
-void tearDown(void) {}
+DT_DEFAULT_FIXTURE()
 
 /* --- parameters -------------------------------------------------------- */
 

@@ -9,18 +9,7 @@
 
 #include <string.h>
 
-static ht_dcm_t dcm;
-static ht_dcm_state_t st;
-static ht_dcm_params_t prm;
-
-void setUp(void)
-{
-    ht_dcm_params_default(&prm);
-    dt_init(&dcm, &prm);
-    ht_dcm_reset(&st);
-}
-
-void tearDown(void) {}
+DT_DEFAULT_FIXTURE()
 
 static double wrap_deg(double d)
 {
