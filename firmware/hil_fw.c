@@ -198,6 +198,7 @@ static void cfg_est(hil_fw_t *h, const uint8_t *p)
     d->accel_band_g = hil_get_i32(&p[34]);
     d->gps_min_speed_cm_s = hil_get_i16(&p[38]);
     d->centripetal = p[40];
+    d->gps_latency_ms = hil_get_u16(&p[41]);
     h->have |= HAVE_EST;
 }
 
@@ -217,6 +218,7 @@ void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
     hil_put_i32(&p[34], d->accel_band_g);
     hil_put_i16(&p[38], d->gps_min_speed_cm_s);
     p[40] = d->centripetal;
+    hil_put_u16(&p[41], d->gps_latency_ms);
 }
 
 /* The ACK of a refused START: which block, which field. */

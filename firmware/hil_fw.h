@@ -29,7 +29,8 @@
 #include "helical/board.h"
 #include "helical/hil_frame.h"
 
-#define HIL_PROTOCOL_VERSION 3u /* 3: raw sensor samples, CFG_EST, STATE */
+#define HIL_PROTOCOL_VERSION                                                                       \
+    4u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -56,7 +57,7 @@
 #define HIL_LEN_CFG_ALT 52u
 #define HIL_LEN_CFG_SPD 22u
 #define HIL_LEN_CFG_OUT 58u
-#define HIL_LEN_CFG_EST 41u
+#define HIL_LEN_CFG_EST 43u
 #define HIL_LEN_SENSORS 28u
 #define HIL_LEN_STEP    52u
 #define HIL_LEN_TRUTH   42u

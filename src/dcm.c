@@ -14,6 +14,7 @@
  */
 #include <stddef.h>
 
+#include "dcm_gps_accel.h"
 #include "dcm_trig.h"
 #include "helical/dcm.h"
 #include "q_inline.h"
@@ -42,7 +43,11 @@
  * the angle of attack building up, and a bias is slow enough to wait for
  * the next quasi-steady second (a steady turn is 3-15 deg/s) */
 #define BIAS_LEARN_RATE_MAX_Q16 ((int32_t)22876)
-#define FLAGS_KEPT              ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
+/* sin(10 deg) in Q30: the yaw integral learns below this heading error */
+#define YAW_LEARN_MAX_Q30 ((int32_t)186453311)
+/* 2^31 / pi in Q30 / 2^31 = 2 / pi in Q30: rad (Q30) to a binary angle */
+#define RAD_Q30_TO_BAM_Q30 ((int32_t)683565276)
+#define FLAGS_KEPT         ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
 
 static int32_t clamp32(int32_t x, int32_t lim)
 {
@@ -165,6 +170,7 @@ int ht_dcm_align(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t accel_g[3],
     zero3(s->bias);
     zero3(s->omega_corr);
     s->g_filt_valid = 0u; /* the filters restart from the new attitude */
+    dcm_ga_reset(&s->ga); /* its intervals were summed with the old matrix */
     const uint32_t kept = (uint32_t)s->flags & (uint32_t)HT_DCM_F_RENORM_FAILED;
     s->flags = (uint16_t)(kept | (uint32_t)HT_DCM_F_ALIGNED);
     return 0;
@@ -430,6 +436,38 @@ static void velocity_heading(const int32_t r[3][3], const int32_t v_q8[3], int32
     }
 }
 
+/*
+ * The GPS course carried forward to now: the course is the velocity's
+ * direction at its epoch, gps_latency_ms before it arrived and held since, so
+ * in a turn it trails the heading by the turn rate times its age (1.6 degrees
+ * at 8 deg/s, 0.1 s of latency and half of a 5 Hz period). It is turned by
+ * the heading rate about the earth vertical (R[2] . w) times that age, the
+ * angle clamped to 0.5 rad (cos and sin by the CORDIC).
+ */
+static void course_now(const ht_dcm_t *d, const ht_dcm_state_t *s, int32_t *cn, int32_t *ce)
+{
+    uint32_t age = (uint32_t)s->gps_age_samples + (uint32_t)d->gps_latency_samples;
+    if (age > (uint32_t)d->p.imu_rate_hz) {
+        age = d->p.imu_rate_hz; /* a stale course: at most one second ahead */
+    }
+    int32_t psi_dot_q16 = 0; /* rad/s about the earth vertical, clockwise from above */
+    for (unsigned j = 0u; j < 3u; j++) {
+        psi_dot_q16 = qi_add_sat32(psi_dot_q16, qi_mul32(s->r[2][j], s->rate_rad_s[j], 30u));
+    }
+    /* the turn of one sample, Q30 rad (<= 64 rad/s / 50 Hz), times the age
+     * (a Q16 time would be 6e-5 off at 0.1 s) */
+    const int32_t per_sample = qi_mul32(psi_dot_q16, d->dt_q30, 16u);
+    const int32_t n = (age > 0u) ? (int32_t)age : 1;
+    const int32_t a = clamp32(per_sample, THETA_MAX_Q30 / n) * (int32_t)age; /* Q30 rad */
+    int32_t c;
+    int32_t sn;
+    ht_dcm_sincos_q30(qi_mul32(a, RAD_Q30_TO_BAM_Q30, 30u), &c, &sn);
+    const int32_t n0 = *cn;
+    const int32_t e0 = *ce;
+    *cn = qi_mul32_fit(n0, c, 30u) - qi_mul32_fit(e0, sn, 30u);
+    *ce = qi_mul32_fit(e0, c, 30u) + qi_mul32_fit(n0, sn, 30u);
+}
+
 /* The yaw error in Q30 from the GPS course or the magnetometer, 0 without. */
 static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
                          const int32_t v_q8[3], uint16_t *flags)
@@ -459,6 +497,7 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
                  * the path by alpha sin(phi) (1.3 deg at 2.3 deg and 35 deg in
                  * the c172p SIL), which the nose would take for a yaw error */
                 velocity_heading(r, v_q8, &nn, &ne);
+                course_now(d, s, &cn, &ce);
                 return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
@@ -576,7 +615,8 @@ static void recover(int32_t r[3][3], const q16_t acc[3], int32_t nose_n, int32_t
 /* The PI step: bias integral (clamped), proportional correction, and the
  * rotation of this sample. Returns HT_DCM_F_BIAS_LIMITED or 0. */
 static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3],
-                        const int32_t e_rp[3], const int32_t e_yaw[3], int32_t theta[3])
+                        const int32_t e_rp[3], const int32_t e_yaw[3], uint8_t rate_gate,
+                        uint8_t yaw_learn, int32_t theta[3])
 {
     uint16_t f = 0u;
     const int32_t bmax = d->bias_max_q30;
@@ -592,15 +632,19 @@ static uint16_t pi_step(const ht_dcm_t *d, ht_dcm_state_t *s, const q16_t gyro[3
     for (unsigned i = 0u; i < 3u; i++) {
         /* the measured rate: the gate does not depend on the estimate */
         const int32_t w = gyro[i];
-        if (w > BIAS_LEARN_RATE_MAX_Q16 || w < -BIAS_LEARN_RATE_MAX_Q16) {
+        if (rate_gate != 0u && (w > BIAS_LEARN_RATE_MAX_Q16 || w < -BIAS_LEARN_RATE_MAX_Q16)) {
             learn = 0u;
         }
     }
     for (unsigned i = 0u; i < 3u; i++) {
         /* the integral of ki * e is minus the bias */
-        const int32_t inc = (learn == 0u) ? 0
-                                          : qi_add_sat32(qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u),
-                                                         qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
+        int32_t inc = 0;
+        if (learn != 0u) {
+            inc = qi_mul32(d->ki_rp_dt_q34, e_rp[i], 34u);
+            if (yaw_learn != 0u) {
+                inc = qi_add_sat32(inc, qi_mul32(d->ki_yaw_dt_q34, e_yaw[i], 34u));
+            }
+        }
         const int32_t b = clamp32(qi_sub_sat32(s->bias[i], inc), bmax);
         if (b == bmax || b == -bmax) {
             f = (uint16_t)HT_DCM_F_BIAS_LIMITED;
@@ -643,6 +687,13 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
         s->rate_rad_s[i] = qi_sub_sat32(gyro[i], qi_rshift_round(s->bias[i], 14u));
     }
     forward_acceleration(d, s, a);
+    if (a->gps_fresh != 0u) {
+        s->gps_age_samples = 0u;
+    } else if (s->gps_age_samples < UINT16_MAX) {
+        s->gps_age_samples++;
+    } else {
+        /* saturated: course_now clamps the age anyway */
+    }
     int32_t e_rp[3];
     if ((sample_flags & (uint32_t)HT_DCM_F_GYRO_SATURATED) != 0u) {
         s->recover_samples = d->p.imu_rate_hz;
@@ -654,20 +705,36 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     int32_t v_q8[3];
     const ht_dcm_state_t *cs = s; /* the matrix is read only there */
     const uint8_t v_gps = body_velocity(d, cs->r, a, v_q8);
-    flags |= rollpitch_error(d, s, v_q8, v_gps, acc, flags, e_rp);
+    const uint8_t acc_sat = ((sample_flags & (uint32_t)HT_DCM_F_ACCEL_SATURATED) != 0u) ? 1u : 0u;
+    dcm_ga_sample(d, &s->ga, cs->r, acc, acc_sat, a);
+    uint8_t rate_gate = 1u;
+    if (dcm_ga_error(&s->ga, cs->r, e_rp) != 0) {
+        /* the GPS acceleration: the w x v model and its filters rest (they
+         * restart from this sample's reference when the GPS goes) */
+        flags |= (uint16_t)HT_DCM_F_GPS_ACCEL;
+        s->g_filt_valid = 0u;
+        rate_gate = 0u; /* no model error in a roll or a pull to keep out */
+    } else {
+        flags |= rollpitch_error(d, s, v_q8, v_gps, acc, flags, e_rp);
+    }
     const int32_t ey = yaw_error(d, s, a, v_q8, &flags);
     int32_t e_yaw[3]; /* about the earth vertical: along R[2] in body axes */
     for (unsigned i = 0u; i < 3u; i++) {
         e_yaw[i] = qi_mul32(ey, s->r[2][i], 30u);
     }
     int32_t theta[3];
-    flags |= pi_step(d, s, gyro, e_rp, e_yaw, theta);
+    /* a large heading error (a start 180 degrees off) is not a bias: the
+     * yaw integral learns only within 10 degrees, or it winds up while the
+     * proportional term turns the heading and overshoots after it */
+    const uint8_t yaw_learn = (ey <= YAW_LEARN_MAX_Q30 && ey >= -YAW_LEARN_MAX_Q30) ? 1u : 0u;
+    flags |= pi_step(d, s, gyro, e_rp, e_yaw, rate_gate, yaw_learn, theta);
     const int32_t nose_n = s->r[0][1];
     const int32_t nose_e = s->r[1][1];
     propagate(s->r, theta);
     if (renormalize(s->r) != 0) {
         recover(s->r, acc, nose_n, nose_e);
         s->g_filt_valid = 0u;
+        dcm_ga_reset(&s->ga);
         flags |= (uint16_t)HT_DCM_F_RENORM_FAILED;
     }
     s->flags = flags;

@@ -18,7 +18,8 @@ static const char *const dcm_param_names[HT_DCM_P_COUNT] = {"",
                                                             "accel_limit",
                                                             "accel_band",
                                                             "gps_min_speed",
-                                                            "centripetal"};
+                                                            "centripetal",
+                                                            "gps_latency"};
 
 const char *ht_dcm_param_name(ht_dcm_param_id_t id)
 {
@@ -34,17 +35,18 @@ void ht_dcm_params_default(ht_dcm_params_t *p)
         return;
     }
     p->imu_rate_hz = 200u;
-    /* Q16 of 0.2, 0.01, 0.5, 0.005, 0.1 and 34.9 (2000 deg/s), rounded */
+    /* Q16 of 0.2, 0.01, 0.5, 0.02, 0.1 and 34.9 (2000 deg/s), rounded */
     p->kp_rollpitch = 13107;
     p->ki_rollpitch = 655;
     p->kp_yaw = 32768;
-    p->ki_yaw = 328;
+    p->ki_yaw = 1311;
     p->gyro_bias_max_rad_s = 6554;
     p->gyro_limit_rad_s = 2287206;
     p->accel_limit_g = 16 * Q16_ONE;
     p->accel_band_g = Q16_ONE / 2;
     p->gps_min_speed_cm_s = 300;
     p->centripetal = (uint8_t)HT_DCM_CF_AUTO;
+    p->gps_latency_ms = 100u;
 }
 
 static int in_range(q16_t v, q16_t lo, q16_t hi)
@@ -88,6 +90,9 @@ static ht_dcm_param_id_t first_bad(const ht_dcm_params_t *p)
     if (p->centripetal > (uint8_t)HT_DCM_CF_AUTO) {
         return HT_DCM_P_CENTRIPETAL;
     }
+    if (p->gps_latency_ms > 500u) {
+        return HT_DCM_P_GPS_LATENCY;
+    }
     return HT_DCM_P_NONE;
 }
 
@@ -129,6 +134,15 @@ int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
     c.inv_band_q30 = q_recip_q30(p->accel_band_g, &e);
     const unsigned shift = 14u + e; /* Q16 * Q30 * 2^-(30+e) * 2^16; e <= 18 */
     c.inv_band_shift = (uint8_t)shift;
+    /* 980.665 cm/s^2 * dt in Q24: 980.665 * 2^14 = 16067215.4 (rounded to
+     * 16067215, 2.5e-8 relative), divided by the rate in two steps so that
+     * the remainder keeps its 10 more bits; at most 321 344 308 at 50 Hz */
+    const uint32_t g_q14 = 16067215u;
+    const uint32_t g_hi = g_q14 / rate;
+    const uint32_t g_lo = (((g_q14 % rate) << 10) + (rate / 2u)) / rate;
+    c.g_dt_q24 = (int32_t)((g_hi << 10) + g_lo);
+    /* the latency in samples, rounded: <= 500 */
+    c.gps_latency_samples = (uint16_t)((((uint32_t)p->gps_latency_ms * rate) + 500u) / 1000u);
     c.ready = 1u;
     *d = c;
     return 0;

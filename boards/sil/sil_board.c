@@ -310,6 +310,10 @@ static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, si
     d->accel_band_g = to_q16(cfg->dcm_accel_band_g);
     d->gps_min_speed_cm_s = to_cm16(cfg->dcm_gps_min_speed_m_s);
     d->centripetal = (uint8_t)to_fixed(cfg->dcm_centripetal, 1.0, 0, 255);
+    if (!in_range(cfg->dcm_gps_latency_s, 0.0, 10.0)) {
+        return fail(err, err_len, "estimator.gps_latency_s");
+    }
+    d->gps_latency_ms = (uint16_t)to_fixed(cfg->dcm_gps_latency_s, 1000.0, 0, UINT16_MAX);
     return 0;
 }
 

@@ -30,7 +30,9 @@
 extern "C" {
 #endif
 
-#define SIL_BOARD_ABI_VERSION 9 /* 8: raw sensors, the one firmware step; 9: align_to_truth */
+#define SIL_BOARD_ABI_VERSION                                                                      \
+    10 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+          10: dcm_gps_latency_s */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -89,6 +91,8 @@ typedef struct {
     double dcm_gyro_bias_max_deg_s, dcm_gyro_limit_deg_s, dcm_accel_limit_g, dcm_accel_band_g;
     double dcm_gps_min_speed_m_s;
     int32_t dcm_centripetal; /* ht_dcm_cf_t */
+    /* ABI 10: the GPS latency the estimator assumes (dcm.h gps_latency_ms) */
+    double dcm_gps_latency_s;
 } sil_config_t;
 
 /* One control step's measurements (library axes: X left, Y forward, Z down).

@@ -64,7 +64,7 @@ typedef struct {
     q16_t kp_rollpitch;         /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
     q16_t ki_rollpitch;         /* 1/s^2, [0, 4]; default 0.01 */
     q16_t kp_yaw;               /* 1/s, [0, 16]; default 0.5 */
-    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.005 */
+    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.02 */
     q16_t gyro_bias_max_rad_s;  /* bound of each bias component, [0, 1]; default 0.1 */
     q16_t gyro_limit_rad_s;     /* the gyro's full scale: |w| >= this flags saturation,
                                    [1, 64]; default 34.9 (2000 deg/s) */
@@ -73,6 +73,9 @@ typedef struct {
                                    at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5 */
     int16_t gps_min_speed_cm_s; /* course used for yaw above this, [0, 10000]; default 300 */
     uint8_t centripetal;        /* ht_dcm_cf_t; default HT_DCM_CF_AUTO */
+    uint16_t gps_latency_ms;    /* a GPS velocity is delivered this long after its epoch
+                                   (gps_fresh), [0, 500]; default 100. It must be below the
+                                   GPS period for the GPS acceleration reference (see below) */
 } ht_dcm_params_t;
 
 /* Fills p with the defaults above. */
@@ -91,6 +94,7 @@ typedef enum {
     HT_DCM_P_ACCEL_BAND,
     HT_DCM_P_GPS_MIN_SPEED,
     HT_DCM_P_CENTRIPETAL,
+    HT_DCM_P_GPS_LATENCY,
     HT_DCM_P_COUNT
 } ht_dcm_param_id_t;
 
@@ -101,14 +105,16 @@ const char *ht_dcm_param_name(ht_dcm_param_id_t id);
  * formats are the implementation's (see dcm.c). */
 typedef struct {
     ht_dcm_params_t p;
-    int32_t dt_q30;         /* 1 / imu_rate_hz in s, Q30 */
-    int32_t kp_rp_dt_q32;   /* kp_rollpitch * dt, Q32 */
-    int32_t kp_yaw_dt_q32;  /* kp_yaw * dt, Q32 */
-    int32_t ki_rp_dt_q34;   /* ki_rollpitch * dt, Q34 */
-    int32_t ki_yaw_dt_q34;  /* ki_yaw * dt, Q34 */
-    int32_t bias_max_q30;   /* gyro_bias_max in rad/s, Q30 */
-    int32_t inv_band_q30;   /* 1 / accel_band: mantissa (q_recip_q30) ... */
-    uint8_t inv_band_shift; /* ... and the shift that gives the weight in Q16 */
+    int32_t dt_q30;               /* 1 / imu_rate_hz in s, Q30 */
+    int32_t kp_rp_dt_q32;         /* kp_rollpitch * dt, Q32 */
+    int32_t kp_yaw_dt_q32;        /* kp_yaw * dt, Q32 */
+    int32_t ki_rp_dt_q34;         /* ki_rollpitch * dt, Q34 */
+    int32_t ki_yaw_dt_q34;        /* ki_yaw * dt, Q34 */
+    int32_t bias_max_q30;         /* gyro_bias_max in rad/s, Q30 */
+    int32_t inv_band_q30;         /* 1 / accel_band: mantissa (q_recip_q30) ... */
+    uint8_t inv_band_shift;       /* ... and the shift that gives the weight in Q16 */
+    int32_t g_dt_q24;             /* 980.665 cm/s^2 * dt: cm/s of one sample at 1 g, Q24 */
+    uint16_t gps_latency_samples; /* gps_latency_ms in IMU samples, rounded */
     uint8_t ready;
 } ht_dcm_t;
 
@@ -126,8 +132,9 @@ typedef struct {
 typedef struct {
     uint8_t gps_fix;              /* nonzero: the velocity below is a valid 3D fix (the last
                                      solution, held between GPS updates: used every sample) */
-    uint8_t gps_fresh;            /* nonzero: a new GPS solution arrived since the last sample
-                                     (informational: the estimator does not need it) */
+    uint8_t gps_fresh;            /* nonzero: a new GPS solution arrived with this sample
+                                     (set on exactly one sample per solution: the GPS
+                                     acceleration reference counts samples between them) */
     int32_t vel_ned_cm_s[3];      /* GPS ground velocity, north, east, down; clamped to
                                      +/-655.35 m/s for the centripetal term */
     uint8_t airspeed_valid;       /* nonzero: airspeed_cm_s is a live reading */
@@ -150,8 +157,40 @@ enum ht_dcm_flag {
                                            |f| < 0.5 g); latched until ht_dcm_reset */
     HT_DCM_F_YAW_AIDED = 1u << 5,       /* this sample: yaw corrected from GPS course / mag */
     HT_DCM_F_BIAS_LIMITED = 1u << 6,    /* a bias component sits on its bound */
-    HT_DCM_F_CF_GPS = 1u << 7           /* this sample's centripetal term used GPS velocity */
+    HT_DCM_F_CF_GPS = 1u << 7,          /* this sample's centripetal term used GPS velocity */
+    HT_DCM_F_GPS_ACCEL = 1u << 8        /* this sample's roll/pitch reference was the GPS
+                                           acceleration (not the accelerometer's w x v model) */
 };
+
+/* GPS intervals in the GPS acceleration reference's window (1 s at 5 Hz). */
+#define HT_DCM_GA_WINDOW 5u
+
+/*
+ * The GPS acceleration reference (src/dcm_gps_accel.c): the accelerometer's
+ * specific force rotated into earth axes and summed over the GPS intervals,
+ * each interval shifted back by the GPS latency, against the GPS velocity
+ * change over the same intervals minus gravity. Internal state.
+ */
+typedef struct {
+    int32_t open_q16[3];                        /* sum of R f since the last boundary, g, Q16 */
+    uint16_t open_n;                            /* its samples */
+    uint8_t open_aligned;                       /* it began at a boundary aligned to an epoch */
+    uint8_t boundary_done;                      /* a boundary since the last solution */
+    int32_t closed_q12[3];                      /* the interval closed at the last boundary as a
+                                                  velocity change, cm/s, Q12 */
+    uint16_t closed_n;                          /* its samples */
+    uint8_t closed_ok;                          /* aligned, no saturated sample */
+    uint8_t count;                              /* consecutive intervals in the window, <= W */
+    uint16_t since_fix;                         /* samples since the last GPS solution */
+    uint16_t period;                            /* samples between the last two (0: unknown) */
+    int32_t dv_q12[HT_DCM_GA_WINDOW][3];        /* the IMU's velocity change per interval,
+                                                  oldest first, cm/s, Q12 */
+    uint16_t n[HT_DCM_GA_WINDOW];               /* samples per interval */
+    int32_t vel_cm_s[HT_DCM_GA_WINDOW + 1u][3]; /* GPS velocities at the interval ends */
+    int32_t err_q30[2];                         /* the last window's tilt error, earth north and
+                                                   east components (sines), Q30 */
+    uint8_t err_valid;
+} ht_dcm_ga_t;
 
 typedef struct {
     int32_t r[3][3];          /* the matrix, Q30 (2^30 = 1.0) */
@@ -166,6 +205,8 @@ typedef struct {
     uint8_t g_filt_valid;
     uint16_t recover_samples; /* samples left of the stronger correction after a gyro
                                  saturation (one second at the IMU rate) */
+    ht_dcm_ga_t ga;           /* the GPS acceleration reference */
+    uint16_t gps_age_samples; /* samples since the last gps_fresh (saturates) */
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;

@@ -46,14 +46,14 @@ from helical_sil.board import Board, BoardError, SilActuators
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 3  # 3: raw sensor samples, CFG_EST, STATE
+PROTOCOL_VERSION = 4  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)
 ID_SENSORS, ID_STEP, ID_TRUTH, ID_IMU = 0x20, 0x21, 0x22, 0x23
 ID_READY, ID_NAK, ID_ACK, ID_OUTPUT, ID_STATE = 0x81, 0x8E, 0x94, 0xA0, 0xA1
 FW_LENGTHS = {ID_READY: 24, ID_NAK: 2, ID_ACK: 4, ID_OUTPUT: 40, ID_STATE: 55}
-LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS, LEN_CFG_EST = 52, 42, 24, 28, 41
+LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS, LEN_CFG_EST = 52, 42, 24, 28, 43
 IMU_MAX = 32  # samples per control step (HIL_IMU_MAX = SIL_IMU_MAX)
 # The firmware's receive ring holds 255 bytes: a step's frames beyond this
 # many bytes are sent after a HELLO/READY round trip (the firmware has then
@@ -209,6 +209,7 @@ def cfg_est_payload(c: dict[str, Any]) -> bytes:
     p += _i32(q16(c["dcm_accel_limit_g"])) + _i32(q16(c["dcm_accel_band_g"]))
     p += _i16(cm16(c["dcm_gps_min_speed_m_s"]))
     p += bytes((to_fixed(c["dcm_centripetal"], 1.0, 0, 255),))
+    p += _u16(to_fixed(c["dcm_gps_latency_s"], 1000.0, 0, 0xFFFF))
     assert len(p) == LEN_CFG_EST
     return p
 

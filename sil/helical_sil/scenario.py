@@ -627,6 +627,7 @@ ESTIMATOR_KEYS: dict[str, tuple[float, float]] = {
     "kp_rollpitch": (0.0, 16.0), "ki_rollpitch": (0.0, 4.0), "kp_yaw": (0.0, 16.0),
     "ki_yaw": (0.0, 4.0), "gyro_bias_max_deg_s": (0.0, 57.0),
     "gps_min_speed_m_s": (0.0, 100.0), "accel_band_g": (0.01, 4.0), "centripetal": (0, 2),
+    "gps_latency_s": (0.0, 0.5),
 }
 
 

@@ -228,13 +228,16 @@ def estimator_config(sc: Scenario) -> dict[str, float]:
         "imu_rate_hz": sc.sim_rate_hz,
         "dcm_kp_rollpitch": e.get("kp_rollpitch", 0.2),
         "dcm_ki_rollpitch": e.get("ki_rollpitch", 0.01),
-        "dcm_kp_yaw": e.get("kp_yaw", 0.5), "dcm_ki_yaw": e.get("ki_yaw", 0.005),
+        "dcm_kp_yaw": e.get("kp_yaw", 0.5), "dcm_ki_yaw": e.get("ki_yaw", 0.02),
         "dcm_gyro_bias_max_deg_s": e.get("gyro_bias_max_deg_s", 5.7),
         "dcm_gyro_limit_deg_s": math.degrees(model.imu.gyro.range_rad_s),
         "dcm_accel_limit_g": model.imu.accel.range_g,
         "dcm_accel_band_g": e.get("accel_band_g", 0.5),
         "dcm_gps_min_speed_m_s": e.get("gps_min_speed_m_s", 3.0),
         "dcm_centripetal": int(e.get("centripetal", 2)),
+        # the estimator is told the receiver's latency: by default the one the
+        # scenario's GPS model has (a user sets it from the receiver's datasheet)
+        "dcm_gps_latency_s": e.get("gps_latency_s", model.gps.latency_s),
     }
 
 

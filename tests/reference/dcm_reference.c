@@ -28,6 +28,8 @@ void dcmr_params_from(const ht_dcm_params_t *p, dcmr_params_t *o)
     o->band = q16r(p->accel_band_g);
     o->gps_min_speed_cm_s = (double)p->gps_min_speed_cm_s;
     o->centripetal = p->centripetal;
+    o->imu_rate = p->imu_rate_hz;
+    o->lat_samples = (int)((p->gps_latency_ms * p->imu_rate_hz + 500u) / 1000u);
 }
 
 static void cross(const double a[3], const double b[3], double o[3])
@@ -90,6 +92,7 @@ int dcmr_align(dcmr_state_t *s, const double f[3], double psi)
     s->bias[0] = s->bias[1] = s->bias[2] = 0.0;
     s->aligned = 1;
     s->g_filt_valid = 0;
+    memset(&s->ga, 0, sizeof s->ga);
     return 0;
 }
 
@@ -132,7 +135,19 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
             const double he = s->r[1][1] * v[1] + s->r[1][2] * v[2];
             const double hl = hypot(hn, he);
             const double dn = hl > 0.0 ? hn / hl : nn, de = hl > 0.0 ? he / hl : ne;
-            return nl * yaw_between(dn, de, vn / sp, ve / sp);
+            /* the course carried forward by the heading rate times its age
+             * (dcm.c course_now), at most one second, 0.5 rad */
+            const int age = s->gps_age + p->lat_samples;
+            const double t = (age > p->imu_rate ? p->imu_rate : age) * p->dt;
+            double rq[3]; /* the rate as the library keeps it: Q16 */
+            for (int i = 0; i < 3; i++) {
+                rq[i] = round(s->rate[i] * 65536.0) / 65536.0;
+            }
+            const double psi_dot = dot(s->r[2], rq);
+            const double an = clampd(psi_dot * t, 0.5);
+            const double cn = vn / sp, ce = ve / sp;
+            const double c = cos(an), sn = sin(an);
+            return nl * yaw_between(dn, de, cn * c - ce * sn, ce * c + cn * sn);
         }
     }
     if (a->mag_valid) {
@@ -235,18 +250,32 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
             erp[i] *= w;
         }
     }
+    s->gps_age = a->gps_fresh ? 0 : s->gps_age + 1;
+    /* the GPS acceleration reference replaces the w x v one when it has a
+     * window (dcm_gps_accel.c) */
+    dcmr_ga_sample(p, &s->ga, s->r, acc, acc_sat, a);
+    double ega[3];
+    const int ga = dcmr_ga_error(&s->ga, s->r, ega);
+    if (ga) {
+        memcpy(erp, ega, sizeof ega);
+        s->g_filt_valid = 0;
+    }
     const double ey = yaw_error(p, s, a, v_air);
-    /* the integral learns below 20 deg/s on every axis (dcm.c) */
+    /* the integral learns below 20 deg/s on every axis (dcm.c), unless the
+     * reference is the GPS acceleration's */
     int learn = 1;
     for (int i = 0; i < 3; i++) {
-        learn &= fabs(gyro[i]) <= 22876.0 / 65536.0;
+        learn &= ga || fabs(gyro[i]) <= 22876.0 / 65536.0;
     }
+    /* the yaw integral learns within 10 degrees of heading error */
+    const int yaw_learn = fabs(ey) <= sin(10.0 * DCMR_PI / 180.0);
     double th[3];
     for (int i = 0; i < 3; i++) {
         const double eyb = ey * s->r[2][i];
         if (learn) {
-            s->bias[i] =
-                clampd(s->bias[i] - (p->ki_rp * erp[i] + p->ki_yaw * eyb) * p->dt, p->bias_max);
+            s->bias[i] = clampd(
+                s->bias[i] - (p->ki_rp * erp[i] + (yaw_learn ? p->ki_yaw * eyb : 0.0)) * p->dt,
+                p->bias_max);
         }
         th[i] = clampd((gyro[i] - s->bias[i] + p->kp_rp * erp[i] + p->kp_yaw * eyb) * p->dt, 0.5);
     }

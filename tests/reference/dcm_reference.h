@@ -17,7 +17,21 @@ typedef struct {
     double dt, kp_rp, ki_rp, kp_yaw, ki_yaw, bias_max, gyro_limit, accel_limit, band;
     double gps_min_speed_cm_s;
     int centripetal; /* ht_dcm_cf_t */
+    int imu_rate;    /* samples per second (the GPS timing counts samples) */
+    int lat_samples; /* gps_latency_ms in samples, rounded */
 } dcmr_params_t;
+
+/* The GPS acceleration reference (dcm_gps_accel.h), in double. */
+#define DCMR_GA_W 5
+typedef struct {
+    double open[3], closed[3]; /* sums of R f dt (g*s) */
+    double closed_t, open_t;   /* their durations, s */
+    int open_aligned, boundary_done, closed_ok, count, since_fix, period;
+    double dv[DCMR_GA_W][3], t[DCMR_GA_W]; /* per interval, oldest first */
+    double vel[DCMR_GA_W + 1][3];          /* cm/s */
+    double err[2];                         /* earth north, east */
+    int err_valid;
+} dcmr_ga_t;
 
 typedef struct {
     double r[3][3];
@@ -30,7 +44,17 @@ typedef struct {
     double accel_fwd;  /* filtered rate of change of the airspeed, g */
     double speed_prev; /* the previous sample's airspeed, cm/s (when valid) */
     int speed_prev_valid;
+    int gps_age; /* samples since the last gps_fresh */
+    dcmr_ga_t ga;
 } dcmr_state_t;
+
+/* One sample of the GPS acceleration reference (r: the matrix before this
+ * sample's propagation, acc clamped, acc_sat: clamped this sample). */
+void dcmr_ga_sample(const dcmr_params_t *p, dcmr_ga_t *g, double r[3][3], const double acc[3],
+                    int acc_sat, const ht_dcm_aiding_t *a);
+
+/* The body-axes tilt error of the last window; 0 when none. */
+int dcmr_ga_error(const dcmr_ga_t *g, double r[3][3], double e[3]);
 
 /* The same parameters in real units (from the integer ones). */
 void dcmr_params_from(const ht_dcm_params_t *p, dcmr_params_t *out);

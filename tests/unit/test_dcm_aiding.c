@@ -28,6 +28,7 @@ static void fly_level_with_bias(const double bias[3], double est[3])
     const ht_imu_sample_t imu = dt_imu(bias, f);
     ht_dcm_aiding_t aid = {0};
     aid.gps_fix = 1u;
+    aid.gps_fresh = 1u;
     aid.vel_ned_cm_s[0] = 2500;
     aid.airspeed_valid = 1u;
     aid.airspeed_cm_s = 2500;
@@ -83,6 +84,7 @@ static double turn_bank_error(uint8_t cf, double *final_err)
         const double psi = om * k / 200.0;
         ht_dcm_aiding_t aid = {0};
         aid.gps_fix = 1u;
+        aid.gps_fresh = 1u;
         aid.vel_ned_cm_s[0] = (int32_t)lround(v * 100.0 * cos(psi));
         aid.vel_ned_cm_s[1] = (int32_t)lround(v * 100.0 * sin(psi));
         aid.airspeed_valid = 1u;
@@ -140,6 +142,7 @@ static void test_gps_yaw_converges_from_90_degrees(void)
     const ht_imu_sample_t imu = dt_imu(z, f);
     ht_dcm_aiding_t aid = {0};
     aid.gps_fix = 1u;
+    aid.gps_fresh = 1u;
     aid.vel_ned_cm_s[0] = 2000;
     ht_dcm_output_t out;
     int t10 = -1;
@@ -228,6 +231,7 @@ static void test_magnetometer_yaw_converges_with_declination(void)
     TEST_ASSERT_INT_WITHIN(5, 1000, out.pitch_cdeg);
     /* GPS course has priority over the magnetometer when both are valid */
     aid.gps_fix = 1u;
+    aid.gps_fresh = 1u;
     aid.vel_ned_cm_s[0] = 2000;
     ht_dcm_update(&dcm, &st, &imu, &aid);
     TEST_ASSERT_TRUE(st.omega_corr[0] != 0 || st.omega_corr[1] != 0 || st.omega_corr[2] != 0);
@@ -277,6 +281,8 @@ static void test_accel_weight_across_the_band(void)
  * apart faster: the flight stays where the course means something.) */
 static void test_closed_loop_tracks_double_reference(void)
 {
+    prm.gps_latency_ms = 100; /* the default: the course is carried forward */
+    dt_init(&dcm, &prm);
     double r0[3][3];
     dcmr_from_euler(15 * DEG, -5 * DEG, 60 * DEG, r0);
     dt_state_at(&st, r0);
@@ -309,11 +315,18 @@ static void test_closed_loop_tracks_double_reference(void)
             f[i] += dt_uniform(&seed, -0.2, 0.2);
         }
         const ht_imu_sample_t imu = dt_imu(w, f);
-        ht_dcm_aiding_t aid = {0};
+        /* a 5 Hz GPS: a new velocity (the nose's, plus a 1 m/s crosswind)
+         * every 40 samples, held between; the GPS acceleration reference
+         * runs on it (the velocity is not consistent with the specific
+         * force: this compares the two implementations, not accuracy) */
+        static ht_dcm_aiding_t aid;
         aid.gps_fix = 1u;
-        aid.vel_ned_cm_s[0] = (int32_t)lround(2000.0 * rs.r[0][1]);
-        aid.vel_ned_cm_s[1] = (int32_t)lround(2000.0 * rs.r[1][1] + 300.0);
-        aid.vel_ned_cm_s[2] = (int32_t)lround(2000.0 * rs.r[2][1]);
+        aid.gps_fresh = (k % 40 == 0) ? 1u : 0u;
+        if (aid.gps_fresh != 0u) {
+            aid.vel_ned_cm_s[0] = (int32_t)lround(2000.0 * rs.r[0][1]);
+            aid.vel_ned_cm_s[1] = (int32_t)lround(2000.0 * rs.r[1][1] + 100.0);
+            aid.vel_ned_cm_s[2] = (int32_t)lround(2000.0 * rs.r[2][1]);
+        }
         aid.airspeed_valid = 1u;
         aid.airspeed_cm_s = 2000;
         const double wq[3] = {imu.gyro_rad_s[0] / 65536.0, imu.gyro_rad_s[1] / 65536.0,
@@ -332,7 +345,10 @@ static void test_closed_loop_tracks_double_reference(void)
     printf("  closed loop vs double reference, 10^5 samples: attitude %.3e rad, bias %.3e "
            "rad/s\n",
            worst, worst_bias);
-    TEST_ASSERT_TRUE(worst < 2e-5);
+    /* 2.5e-5 measured with the 5 Hz GPS and its acceleration reference
+     * (1.9e-5 before, with the course on every sample and no window): the
+     * window's corrections from this inconsistent velocity are large */
+    TEST_ASSERT_TRUE(worst < 3e-5);
     TEST_ASSERT_TRUE(worst_bias < 1e-6);
 }
 

@@ -58,6 +58,17 @@ static void test_parameter_edges_each_field(void)
     EDGE(gps_min_speed_cm_s, HT_DCM_P_GPS_MIN_SPEED, 0, 10000);
     {
         ht_dcm_params_t p = prm;
+        p.gps_latency_ms = 0u;
+        expect_param(p, HT_DCM_P_GPS_LATENCY, 1);
+        p.gps_latency_ms = 500u;
+        expect_param(p, HT_DCM_P_GPS_LATENCY, 1);
+        p.gps_latency_ms = 501u;
+        expect_param(p, HT_DCM_P_GPS_LATENCY, 0);
+        p.gps_latency_ms = UINT16_MAX;
+        expect_param(p, HT_DCM_P_GPS_LATENCY, 0);
+    }
+    {
+        ht_dcm_params_t p = prm;
         p.centripetal = (uint8_t)HT_DCM_CF_OFF;
         expect_param(p, HT_DCM_P_CENTRIPETAL, 1);
         p.centripetal = (uint8_t)HT_DCM_CF_AUTO;
@@ -68,6 +79,7 @@ static void test_parameter_edges_each_field(void)
     TEST_ASSERT_EQUAL_STRING("imu_rate_hz", ht_dcm_param_name(HT_DCM_P_IMU_RATE));
     TEST_ASSERT_EQUAL_STRING("accel_band", ht_dcm_param_name(HT_DCM_P_ACCEL_BAND));
     TEST_ASSERT_EQUAL_STRING("centripetal", ht_dcm_param_name(HT_DCM_P_CENTRIPETAL));
+    TEST_ASSERT_EQUAL_STRING("gps_latency", ht_dcm_param_name(HT_DCM_P_GPS_LATENCY));
     TEST_ASSERT_EQUAL_STRING("", ht_dcm_param_name(HT_DCM_P_NONE));
     TEST_ASSERT_EQUAL_STRING("", ht_dcm_param_name(HT_DCM_P_COUNT));
     for (int i = 1; i < (int)HT_DCM_P_COUNT; i++) {
@@ -81,7 +93,7 @@ static void test_defaults_and_derived_values(void)
     TEST_ASSERT_EQUAL_INT32(13107, prm.kp_rollpitch);
     TEST_ASSERT_EQUAL_INT32(655, prm.ki_rollpitch);
     TEST_ASSERT_EQUAL_INT32(32768, prm.kp_yaw);
-    TEST_ASSERT_EQUAL_INT32(328, prm.ki_yaw);
+    TEST_ASSERT_EQUAL_INT32(1311, prm.ki_yaw);
     TEST_ASSERT_EQUAL_INT32(6554, prm.gyro_bias_max_rad_s);
     TEST_ASSERT_EQUAL_INT32(2287206, prm.gyro_limit_rad_s);
     TEST_ASSERT_EQUAL_INT32(16 * Q16_ONE, prm.accel_limit_g);
@@ -90,6 +102,26 @@ static void test_defaults_and_derived_values(void)
     TEST_ASSERT_EQUAL_UINT8(HT_DCM_CF_AUTO, prm.centripetal);
     /* dt: 2^30 / rate rounded, at each end */
     TEST_ASSERT_EQUAL_INT32(5368709, dcm.dt_q30); /* 5368709.12 */
+    {
+        /* the GPS latency (the fixture sets 0: its velocities have none) in
+         * samples, rounded; 980.665 cm/s^2 * dt in Q24 within 2e-8 */
+        ht_dcm_params_t q;
+        ht_dcm_params_default(&q);
+        TEST_ASSERT_EQUAL_UINT16(100u, q.gps_latency_ms);
+        ht_dcm_t dq;
+        dt_init(&dq, &q);
+        TEST_ASSERT_EQUAL_UINT16(20u, dq.gps_latency_samples);
+        TEST_ASSERT_INT32_WITHIN(2, 82264143, dq.g_dt_q24); /* 82264142.64 */
+        q.imu_rate_hz = 333u;
+        dt_init(&dq, &q);
+        TEST_ASSERT_EQUAL_UINT16(33u, dq.gps_latency_samples); /* 33.3 */
+        TEST_ASSERT_INT32_WITHIN(2, 49407893, dq.g_dt_q24);    /* 49407893.48 */
+        q.imu_rate_hz = 50u;
+        q.gps_latency_ms = 500u;
+        dt_init(&dq, &q);
+        TEST_ASSERT_EQUAL_UINT16(25u, dq.gps_latency_samples);
+        TEST_ASSERT_INT32_WITHIN(8, 329056571, dq.g_dt_q24); /* 329056570.57 */
+    }
     ht_dcm_params_t p = prm;
     p.imu_rate_hz = 1000u;
     dt_init(&dcm, &p);

@@ -64,6 +64,7 @@ static void test_course_is_compared_with_the_air_velocity(void)
         dcmr_rotate_body(r0, wq, (k - 1) / 200.0, prev);
         ht_dcm_aiding_t aid = {0};
         aid.gps_fix = 1u;
+        aid.gps_fresh = 1u;
         for (int i = 0; i < 3; i++) {
             aid.vel_ned_cm_s[i] =
                 (int32_t)lround(100.0 * (prev[i][1] * vb[1] + prev[i][2] * vb[2]));
