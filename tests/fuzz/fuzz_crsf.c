@@ -1,0 +1,112 @@
+/*
+ * libFuzzer target: arbitrary bytes into the CRSF decoder (src/rx_crsf.c).
+ * Checks at every byte: the byte accounting of frame_counts.h (every byte
+ * fed is in exactly one counter or the window), the window bound, at most
+ * one well-formed frame per 4 bytes (the smallest frame), every decoded channel in 880..2159 us and
+ * the mapping of its ticks; and that feeding the same bytes in chunks (sizes taken from the input)
+ * through crsf_feed gives the same results at the same bytes, the same
+ * messages and the same counters as crsf_push one byte at a time.
+ * ASan and UBSan (scripts/fuzz.sh) catch any access out of bounds.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "helical/rx_crsf.h"
+
+static void check(int ok)
+{
+    if (!ok) {
+        abort();
+    }
+}
+
+static uint64_t accounted(const ht_frame_counts_t *c, unsigned held)
+{
+    return (uint64_t)c->frame_bytes + c->bad_length + c->bad_checksum + c->bad_end + c->truncated +
+           c->discarded_bytes + held;
+}
+
+/* A decoded message: channels in range and mapped, link_lost consistent. */
+static void check_msg(crsf_result_t r, const crsf_msg_t *m)
+{
+    check(r == CRSF_RC_CHANNELS || r == CRSF_LINK_STATS);
+    if (r == CRSF_RC_CHANNELS) {
+        for (int k = 0; k < 16; k++) {
+            check(m->rc.ticks[k] <= RC_TICKS_MAX);
+            check(m->rc.pulse_us[k] >= RC_PULSE_US_AT_TICKS0 &&
+                  m->rc.pulse_us[k] <= RC_PULSE_US_AT_MAX);
+            check(m->rc.pulse_us[k] == rc_ticks_to_pulse_us(m->rc.ticks[k]));
+        }
+    } else {
+        check(m->link.link_lost == (m->link.uplink_lq_pct == 0u));
+        check(m->link.uplink_rssi_ant1_dbm <= 0 && m->link.downlink_rssi_dbm <= 0);
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size > 100000) {
+        return 0;
+    }
+    /* pass 1: chunked, recording where each message was decoded */
+    size_t cap = size / 4u + 1u;
+    size_t *at = malloc(cap * sizeof *at);
+    crsf_result_t *res = malloc(cap * sizeof *res);
+    crsf_msg_t *msg = malloc(cap * sizeof *msg);
+    check(at != NULL && res != NULL && msg != NULL);
+    crsf_decoder_t b;
+    crsf_msg_t m;
+    memset(&m, 0, sizeof m);
+    crsf_init(&b);
+    size_t nb = 0, pos = 0, ci = 0;
+    while (pos < size) {
+        size_t chunk = 1u + (size_t)(data[ci % size] % 23u);
+        ci++;
+        if (chunk > size - pos) {
+            chunk = size - pos;
+        }
+        crsf_result_t r;
+        size_t used = crsf_feed(&b, &data[pos], chunk, &m, &r);
+        check(used >= 1u && used <= chunk);
+        pos += used;
+        if (r != CRSF_NONE) {
+            check(nb < cap);
+            at[nb] = pos - 1u;
+            res[nb] = r;
+            msg[nb] = m;
+            nb++;
+        } else {
+            check(used == chunk);
+        }
+    }
+
+    /* pass 2: byte at a time, checked at every byte and against pass 1 */
+    crsf_decoder_t a;
+    crsf_msg_t ma;
+    memset(&ma, 0, sizeof ma);
+    crsf_init(&a);
+    size_t na = 0;
+    for (size_t i = 0; i < size; i++) {
+        crsf_result_t r = crsf_push(&a, data[i], &ma);
+        check(a.held <= CRSF_FRAME_MAX);
+        check(accounted(&a.counts, a.held) == i + 1u);
+        uint32_t frames = a.counts.frames_ok + a.counts.unknown_type + a.counts.wrong_length;
+        check((uint64_t)frames * 4u <= a.counts.frame_bytes);
+        check(a.counts.frames_ok <= frames);
+        check(a.counts.bad_end == 0u);
+        if (r != CRSF_NONE) {
+            check_msg(r, &ma);
+            check(na < nb && at[na] == i && res[na] == r);
+            check(memcmp(&msg[na], &ma, sizeof ma) == 0);
+            na++;
+        }
+    }
+    check(na == nb);
+    check(memcmp(&a.counts, &b.counts, sizeof a.counts) == 0 && a.held == b.held);
+    free(at);
+    free(res);
+    free(msg);
+    return 0;
+}
