@@ -38,7 +38,7 @@ def build(core: B.Core, opt: str, outroot: Path) -> Path:
     outdir.mkdir(parents=True, exist_ok=True)
     flags = [*core.flags, f"-{opt}", "-ffunction-sections", "-fdata-sections", "-g"]
     lib = B.build_library(B.ARM_CC, flags, outdir / "lib")
-    need = {"dcm.c", "dcm_params.c", "dcm_trig.c", "q14.c"}
+    need = {"dcm.c", "dcm_gps_accel.c", "dcm_params.c", "dcm_trig.c", "q14.c"}
     missing = need & set(lib.failed)
     if missing:
         raise B.BenchError(f"estimator sources do not build: {sorted(missing)}")
@@ -83,7 +83,8 @@ def host_state(outroot: Path, samples: int) -> str:
     """The host build's final state after the same flight, as hex."""
     outdir = outroot / "dcm-host"
     outdir.mkdir(parents=True, exist_ok=True)
-    lib = [str(B.ROOT / "src" / n) for n in ("dcm.c", "dcm_params.c", "dcm_trig.c", "q14.c")]
+    lib = [str(B.ROOT / "src" / n) for n in ("dcm.c", "dcm_gps_accel.c", "dcm_params.c", "dcm_trig.c",
+                                           "q14.c")]
     exe = outdir / "dcm_host"
     B.run(["gcc", *B.STRICT, "-O2", "-I", str(B.ROOT / "include"), "-I", str(B.ROOT / "src"),
            str(B.CDIR / "dcm_harness.c"), str(B.CDIR / "dcm_host_main.c"), *lib, "-o", str(exe)])
