@@ -64,7 +64,8 @@ static void test_unpack_single_bits(void)
         p[i / 8u] = (uint8_t)(1u << (i % 8u));
         rc_unpack_11bit(p, out);
         for (unsigned k = 0; k < 16u; k++) {
-            uint16_t want = (k == i / 11u) ? (uint16_t)(1u << (i % 11u)) : 0u;
+            const unsigned bit = (k == i / 11u) ? (1u << (i % 11u)) : 0u; /* < 2^11 */
+            const uint16_t want = (uint16_t)bit;
             TEST_ASSERT_EQUAL_UINT16(want, out[k]);
         }
     }
