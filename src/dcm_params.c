@@ -140,7 +140,8 @@ int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
     const uint32_t g_q14 = 16067215u;
     const uint32_t g_hi = g_q14 / rate;
     const uint32_t g_lo = (((g_q14 % rate) << 10) + (rate / 2u)) / rate;
-    c.g_dt_q24 = (int32_t)((g_hi << 10) + g_lo);
+    const uint32_t g_dt = (g_hi << 10) + g_lo;
+    c.g_dt_q24 = (int32_t)g_dt;
     /* the latency in samples, rounded: <= 500 */
     c.gps_latency_samples = (uint16_t)((((uint32_t)p->gps_latency_ms * rate) + 500u) / 1000u);
     c.ready = 1u;

@@ -158,8 +158,8 @@ enum ht_dcm_flag {
     HT_DCM_F_YAW_AIDED = 1u << 5,       /* this sample: yaw corrected from GPS course / mag */
     HT_DCM_F_BIAS_LIMITED = 1u << 6,    /* a bias component sits on its bound */
     HT_DCM_F_CF_GPS = 1u << 7,          /* this sample's centripetal term used GPS velocity */
-    HT_DCM_F_GPS_ACCEL = 1u << 8        /* this sample's roll/pitch reference was the GPS
-                                           acceleration (not the accelerometer's w x v model) */
+    HT_DCM_F_GPS_ACCEL = 0x100u         /* this sample's roll/pitch reference was the GPS
+                                            acceleration (not the accelerometer's w x v model) */
 };
 
 /* GPS intervals in the GPS acceleration reference's window (1 s at 5 Hz). */
