@@ -1,38 +1,17 @@
 /*
- * libFuzzer target: arbitrary bytes into the CRSF decoder (src/rx_crsf.c).
- * Checks at every byte: the byte accounting of frame_counts.h (every byte
- * fed is in exactly one counter or the window), the window bound, at most
- * one well-formed frame per 4 bytes (the smallest frame), every decoded channel in 880..2159 us and
- * the mapping of its ticks; and that feeding the same bytes in chunks (sizes taken from the input)
- * through crsf_feed gives the same results at the same bytes, the same
- * messages and the same counters as crsf_push one byte at a time.
- * ASan and UBSan (scripts/fuzz.sh) catch any access out of bounds.
+ * libFuzzer target: arbitrary bytes into the CRSF decoder (src/rx_crsf.c),
+ * through frame_fuzz.h (the checks every frame decoder gets; the smallest
+ * frame is 4 bytes). Here also: every decoded channel in 880..2159 us and the
+ * mapping of its ticks, link_lost consistent, no end byte to be bad.
  */
-#include <stddef.h>
-#include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
-
+#include "frame_fuzz.h"
 #include "helical/rx_crsf.h"
 
-static void check(int ok)
+static void check_msg(int r, const void *p)
 {
-    if (!ok) {
-        abort();
-    }
-}
-
-static uint64_t accounted(const ht_frame_counts_t *c, unsigned held)
-{
-    return (uint64_t)c->frame_bytes + c->bad_length + c->bad_checksum + c->bad_end + c->truncated +
-           c->discarded_bytes + held;
-}
-
-/* A decoded message: channels in range and mapped, link_lost consistent. */
-static void check_msg(crsf_result_t r, const crsf_msg_t *m)
-{
-    check(r == CRSF_RC_CHANNELS || r == CRSF_LINK_STATS);
-    if (r == CRSF_RC_CHANNELS) {
+    const crsf_msg_t *m = p;
+    check(r == (int)CRSF_RC_CHANNELS || r == (int)CRSF_LINK_STATS);
+    if (r == (int)CRSF_RC_CHANNELS) {
         for (int k = 0; k < 16; k++) {
             check(m->rc.ticks[k] <= RC_TICKS_MAX);
             check(m->rc.pulse_us[k] >= RC_PULSE_US_AT_TICKS0 &&
@@ -45,68 +24,15 @@ static void check_msg(crsf_result_t r, const crsf_msg_t *m)
     }
 }
 
+static void check_counts(const ht_frame_counts_t *c)
+{
+    check(c->bad_end == 0u);
+}
+
+FRAME_FUZZ_OPS(crsf, crsf_decoder_t, crsf_msg_t, crsf_result_t, 4u, CRSF_FRAME_MAX, check_msg,
+               check_counts);
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (size > 100000) {
-        return 0;
-    }
-    /* pass 1: chunked, recording where each message was decoded */
-    size_t cap = size / 4u + 1u;
-    size_t *at = malloc(cap * sizeof *at);
-    crsf_result_t *res = malloc(cap * sizeof *res);
-    crsf_msg_t *msg = malloc(cap * sizeof *msg);
-    check(at != NULL && res != NULL && msg != NULL);
-    crsf_decoder_t b;
-    crsf_msg_t m;
-    memset(&m, 0, sizeof m);
-    crsf_init(&b);
-    size_t nb = 0, pos = 0, ci = 0;
-    while (pos < size) {
-        size_t chunk = 1u + (size_t)(data[ci % size] % 23u);
-        ci++;
-        if (chunk > size - pos) {
-            chunk = size - pos;
-        }
-        crsf_result_t r;
-        size_t used = crsf_feed(&b, &data[pos], chunk, &m, &r);
-        check(used >= 1u && used <= chunk);
-        pos += used;
-        if (r != CRSF_NONE) {
-            check(nb < cap);
-            at[nb] = pos - 1u;
-            res[nb] = r;
-            msg[nb] = m;
-            nb++;
-        } else {
-            check(used == chunk);
-        }
-    }
-
-    /* pass 2: byte at a time, checked at every byte and against pass 1 */
-    crsf_decoder_t a;
-    crsf_msg_t ma;
-    memset(&ma, 0, sizeof ma);
-    crsf_init(&a);
-    size_t na = 0;
-    for (size_t i = 0; i < size; i++) {
-        crsf_result_t r = crsf_push(&a, data[i], &ma);
-        check(a.held <= CRSF_FRAME_MAX);
-        check(accounted(&a.counts, a.held) == i + 1u);
-        uint32_t frames = a.counts.frames_ok + a.counts.unknown_type + a.counts.wrong_length;
-        check((uint64_t)frames * 4u <= a.counts.frame_bytes);
-        check(a.counts.frames_ok <= frames);
-        check(a.counts.bad_end == 0u);
-        if (r != CRSF_NONE) {
-            check_msg(r, &ma);
-            check(na < nb && at[na] == i && res[na] == r);
-            check(memcmp(&msg[na], &ma, sizeof ma) == 0);
-            na++;
-        }
-    }
-    check(na == nb);
-    check(memcmp(&a.counts, &b.counts, sizeof a.counts) == 0 && a.held == b.held);
-    free(at);
-    free(res);
-    free(msg);
-    return 0;
+    return frame_fuzz_run(&crsf_fuzz_ops, data, size);
 }
