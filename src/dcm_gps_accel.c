@@ -14,21 +14,11 @@
 
 #include <stddef.h>
 
+#include "helical/q14.h"
 #include "q_inline.h"
 
 /* GPS velocities are clamped before any difference. */
 #define GA_V_MAX_CM_S 65535
-
-static int32_t ga_clamp(int32_t x, int32_t lim)
-{
-    if (x > lim) {
-        return lim;
-    }
-    if (x < -lim) {
-        return -lim;
-    }
-    return x;
-}
 
 void dcm_ga_reset(ht_dcm_ga_t *g)
 {
@@ -68,7 +58,8 @@ static void push(ht_dcm_ga_t *g, const ht_dcm_aiding_t *a, uint8_t with_interval
         }
     }
     for (unsigned i = 0u; i < 3u; i++) {
-        g->vel_cm_s[HT_DCM_GA_WINDOW][i] = ga_clamp(a->vel_ned_cm_s[i], GA_V_MAX_CM_S);
+        g->vel_cm_s[HT_DCM_GA_WINDOW][i] =
+            q_clamp32(a->vel_ned_cm_s[i], -GA_V_MAX_CM_S, GA_V_MAX_CM_S);
     }
     if (with_interval == 0u) {
         g->count = 0u;
