@@ -15,6 +15,7 @@
 #include <stddef.h>
 
 #include "dcm_gps_accel.h"
+#include "dcm_wind.h"
 #include "dcm_trig.h"
 #include "helical/dcm.h"
 #include "q_inline.h"
@@ -45,6 +46,8 @@
 #define BIAS_LEARN_RATE_MAX_Q16 ((int32_t)22876)
 /* sin(10 deg) in Q30: the yaw integral learns below this heading error */
 #define YAW_LEARN_MAX_Q30 ((int32_t)186453311)
+/* sin(60 deg) in Q30: the wind learns while |R[2][1]| (sin pitch) is below */
+#define NOSE_WIND_MAX_Q30 ((int32_t)929887697)
 /* 2^31 / pi in Q30 / 2^31 = 2 / pi in Q30: rad (Q30) to a binary angle */
 #define RAD_Q30_TO_BAM_Q30 ((int32_t)683565276)
 #define FLAGS_KEPT         ((uint32_t)HT_DCM_F_ALIGNED | (uint32_t)HT_DCM_F_RENORM_FAILED)
@@ -419,36 +422,29 @@ static int32_t yaw_between(int32_t an, int32_t ae, int32_t bn, int32_t be)
 }
 
 /*
- * The horizontal direction (unit, Q28) of the body air velocity v (Q8 cm/s)
- * rotated into earth axes. Left as it is (the nose's direction) when v has
- * no horizontal part (or is zero: no speed known).
+ * The horizontal part of the body air velocity v (Q8 cm/s) in earth axes,
+ * north and east, cm/s Q8: 0 when no speed is known.
  */
-static void velocity_heading(const int32_t r[3][3], const int32_t v_q8[3], int32_t *dn, int32_t *de)
+static void air_earth(const int32_t r[3][3], const int32_t v_q8[3], int32_t air_q8[2])
 {
     /* v = [0, vy, vz], |R| <= 1.5 and |v| < 2^23: each product and the sums fit */
-    const int32_t hn = qi_mul32(r[0][1], v_q8[1], 30u) + qi_mul32(r[0][2], v_q8[2], 30u);
-    const int32_t he = qi_mul32(r[1][1], v_q8[1], 30u) + qi_mul32(r[1][2], v_q8[2], 30u);
-    int32_t un;
-    int32_t ue;
-    if (q_unit2_q28(hn, he, &un, &ue) != 0) {
-        *dn = un;
-        *de = ue;
-    }
+    air_q8[0] = qi_mul32(r[0][1], v_q8[1], 30u) + qi_mul32(r[0][2], v_q8[2], 30u);
+    air_q8[1] = qi_mul32(r[1][1], v_q8[1], 30u) + qi_mul32(r[1][2], v_q8[2], 30u);
 }
 
 /*
- * The GPS course carried forward to now: the course is the velocity's
- * direction at its epoch, gps_latency_ms before it arrived and held since, so
- * in a turn it trails the heading by the turn rate times its age (1.6 degrees
- * at 8 deg/s, 0.1 s of latency and half of a 5 Hz period). It is turned by
- * the heading rate about the earth vertical (R[2] . w) times that age, the
- * angle clamped to 0.5 rad (cos and sin by the CORDIC).
+ * The heading's turn since the GPS velocity's epoch: the velocity is
+ * gps_latency_ms old when it arrives and held since, so in a turn its
+ * direction trails the heading by the turn rate times its age (1.6 degrees
+ * at 8 deg/s, 0.1 s of latency and half of a 5 Hz period). The angle is the
+ * heading rate about the earth vertical (R[2] . w) times that age, clamped
+ * to 0.5 rad; cos and sin in Q30 (the CORDIC).
  */
-static void course_now(const ht_dcm_t *d, const ht_dcm_state_t *s, int32_t *cn, int32_t *ce)
+static void gps_age_turn(const ht_dcm_t *d, const ht_dcm_state_t *s, int32_t *c, int32_t *sn)
 {
     uint32_t age = (uint32_t)s->gps_age_samples + (uint32_t)d->gps_latency_samples;
     if (age > (uint32_t)d->p.imu_rate_hz) {
-        age = d->p.imu_rate_hz; /* a stale course: at most one second ahead */
+        age = d->p.imu_rate_hz; /* a stale velocity: at most one second ahead */
     }
     int32_t psi_dot_q16 = 0; /* rad/s about the earth vertical, clockwise from above */
     for (unsigned j = 0u; j < 3u; j++) {
@@ -459,34 +455,44 @@ static void course_now(const ht_dcm_t *d, const ht_dcm_state_t *s, int32_t *cn, 
     const int32_t per_sample = qi_mul32(psi_dot_q16, d->dt_q30, 16u);
     const int32_t n = (age > 0u) ? (int32_t)age : 1;
     const int32_t a = clamp32(per_sample, THETA_MAX_Q30 / n) * (int32_t)age; /* Q30 rad */
-    int32_t c;
-    int32_t sn;
-    ht_dcm_sincos_q30(qi_mul32(a, RAD_Q30_TO_BAM_Q30, 30u), &c, &sn);
-    const int32_t n0 = *cn;
-    const int32_t e0 = *ce;
-    *cn = qi_mul32_fit(n0, c, 30u) - qi_mul32_fit(e0, sn, 30u);
-    *ce = qi_mul32_fit(e0, c, 30u) + qi_mul32_fit(n0, sn, 30u);
+    ht_dcm_sincos_q30(qi_mul32(a, RAD_Q30_TO_BAM_Q30, 30u), c, sn);
 }
 
-/* The yaw error in Q30 from the GPS course or the magnetometer, 0 without. */
+/* The GPS aiding of one sample: the air-relative course carried to now. */
+typedef struct {
+    int32_t turn_c, turn_s; /* the heading's turn over the GPS velocity's age, Q30 */
+    int32_t air_q8[2];      /* the air velocity's horizontal part, earth axes */
+    uint8_t course;         /* 1: the course aided the heading */
+} gps_course_t;
+
+/*
+ * The yaw error in Q30 from the GPS course or the magnetometer, 0 without.
+ * The course is that of the GPS velocity through the air (v_gps - wind), the
+ * direction the air velocity R v should have; turned by the heading's turn
+ * since its epoch.
+ */
 static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
-                         const int32_t v_q8[3], uint16_t *flags)
+                         gps_course_t *g, uint16_t *flags)
 {
     const int32_t(*r)[3] = s->r;
     int32_t nn;
     int32_t ne;
+    g->course = 0u;
     if (q_unit2_q28(r[0][1], r[1][1], &nn, &ne) == 0) {
         return 0; /* nose vertical: no heading */
     }
     if (a->gps_fix != 0u) {
+        const int32_t gps_cm_s[2] = {a->vel_ned_cm_s[0], a->vel_ned_cm_s[1]};
+        int32_t through_air_q8[2];
+        dcm_wind_through_air(&s->wind, gps_cm_s, through_air_q8);
         int32_t cn;
         int32_t ce;
-        const int32_t vn = a->vel_ned_cm_s[0];
-        const int32_t ve = a->vel_ned_cm_s[1];
-        if (q_unit2_q28(vn, ve, &cn, &ce) != 0) {
-            const int32_t speed = qi_add_sat32(qi_mul32(vn, cn, 28u), qi_mul32(ve, ce, 28u));
-            if (speed > (int32_t)d->p.gps_min_speed_cm_s) {
+        if (q_unit2_q28(through_air_q8[0], through_air_q8[1], &cn, &ce) != 0) {
+            const int32_t speed_q8 = qi_add_sat32(qi_mul32(through_air_q8[0], cn, 28u),
+                                                  qi_mul32(through_air_q8[1], ce, 28u));
+            if (speed_q8 > ((int32_t)d->p.gps_min_speed_cm_s * 256)) {
                 *flags |= (uint16_t)HT_DCM_F_YAW_AIDED;
+                g->course = 1u;
                 /* scaled by the nose's horizontal length (cos pitch): the
                  * course says nothing about the heading of a vertical nose,
                  * and its direction is ill-conditioned there */
@@ -496,8 +502,16 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
                  * a banked turn the angle of attack points the nose inside
                  * the path by alpha sin(phi) (1.3 deg at 2.3 deg and 35 deg in
                  * the c172p SIL), which the nose would take for a yaw error */
-                velocity_heading(r, v_q8, &nn, &ne);
-                course_now(d, s, &cn, &ce);
+                int32_t un;
+                int32_t ue;
+                if (q_unit2_q28(g->air_q8[0], g->air_q8[1], &un, &ue) != 0) {
+                    nn = un;
+                    ne = ue;
+                }
+                gps_age_turn(d, s, &g->turn_c, &g->turn_s);
+                const int32_t n0 = cn;
+                cn = qi_mul32_fit(n0, g->turn_c, 30u) - qi_mul32_fit(ce, g->turn_s, 30u);
+                ce = qi_mul32_fit(ce, g->turn_c, 30u) + qi_mul32_fit(n0, g->turn_s, 30u);
                 return qi_mul32(yaw_between(nn, ne, cn, ce), nh_q30, 30u);
             }
         }
@@ -525,6 +539,32 @@ static int32_t yaw_error(const ht_dcm_t *d, const ht_dcm_state_t *s, const ht_dc
         }
     }
     return 0;
+}
+
+/*
+ * The wind learns (dcm_wind.h) at a new GPS solution that aided the course,
+ * with a live pitot (the air velocity's length is measured, not the GPS
+ * speed put in its place), every body rate within 20 deg/s (the air
+ * velocity's model has no sideslip, wrong in a roll or a snap) and the nose
+ * within 60 degrees of the horizon.
+ */
+static void wind_step(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_dcm_aiding_t *a,
+                      const gps_course_t *g, uint32_t period)
+{
+    if (g->course == 0u || a->gps_fresh == 0u || a->airspeed_valid == 0u || a->airspeed_cm_s <= 0) {
+        return;
+    }
+    for (unsigned i = 0u; i < 3u; i++) {
+        const int32_t w = s->rate_rad_s[i];
+        if (w > BIAS_LEARN_RATE_MAX_Q16 || w < -BIAS_LEARN_RATE_MAX_Q16) {
+            return;
+        }
+    }
+    if (s->r[2][1] > NOSE_WIND_MAX_Q30 || s->r[2][1] < -NOSE_WIND_MAX_Q30) {
+        return;
+    }
+    const int32_t gps_cm_s[2] = {a->vel_ned_cm_s[0], a->vel_ned_cm_s[1]};
+    dcm_wind_learn(d, &s->wind, g->air_q8, gps_cm_s, g->turn_c, g->turn_s, period);
 }
 
 /*
@@ -687,6 +727,9 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
         s->rate_rad_s[i] = qi_sub_sat32(gyro[i], qi_rshift_round(s->bias[i], 14u));
     }
     forward_acceleration(d, s, a);
+    /* samples since the previous solution: the weight of a new one in the
+     * wind's low pass (dcm_wind.c) */
+    const uint32_t gps_period = (uint32_t)s->gps_age_samples + 1u;
     if (a->gps_fresh != 0u) {
         s->gps_age_samples = 0u;
     } else if (s->gps_age_samples < UINT16_MAX) {
@@ -717,7 +760,10 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     } else {
         flags |= rollpitch_error(d, s, v_q8, v_gps, acc, flags, e_rp);
     }
-    const int32_t ey = yaw_error(d, s, a, v_q8, &flags);
+    gps_course_t g = {Q30_ONE, 0, {0, 0}, 0u};
+    air_earth(cs->r, v_q8, g.air_q8);
+    const int32_t ey = yaw_error(d, s, a, &g, &flags);
+    wind_step(d, s, a, &g, gps_period);
     int32_t e_yaw[3]; /* about the earth vertical: along R[2] in body axes */
     for (unsigned i = 0u; i < 3u; i++) {
         e_yaw[i] = qi_mul32(ey, s->r[2][i], 30u);

@@ -115,6 +115,7 @@ typedef struct {
     uint8_t inv_band_shift;       /* ... and the shift that gives the weight in Q16 */
     int32_t g_dt_q24;             /* 980.665 cm/s^2 * dt: cm/s of one sample at 1 g, Q24 */
     uint16_t gps_latency_samples; /* gps_latency_ms in IMU samples, rounded */
+    int32_t wind_alpha_q30;       /* dt / HT_DCM_WIND_TAU_S: the wind's low pass per sample */
     uint8_t ready;
 } ht_dcm_t;
 
@@ -162,6 +163,10 @@ enum ht_dcm_flag {
                                             acceleration (not the accelerometer's w x v model) */
 };
 
+/* The wind estimate's time constant, s (src/dcm_wind.h): the regression's
+ * memory, about half a turn at 10 deg/s. */
+#define HT_DCM_WIND_TAU_S 20u
+
 /* GPS intervals in the GPS acceleration reference's window (1 s at 5 Hz). */
 #define HT_DCM_GA_WINDOW 5u
 
@@ -192,6 +197,22 @@ typedef struct {
     uint8_t err_valid;
 } ht_dcm_ga_t;
 
+/*
+ * The wind estimate (src/dcm_wind.h): the GPS velocity y regressed on the
+ * air velocity x over the last HT_DCM_WIND_TAU_S, y = W + A x, in complex
+ * numbers (north + i east); A is a rotation (the heading error) times a
+ * scale (the airspeed's error). Internal state.
+ */
+typedef struct {
+    int32_t mx_q8[2]; /* low-passed x, cm/s, Q8 */
+    int32_t my_q8[2]; /* low-passed y, cm/s, Q8 */
+    int32_t sxx;      /* low-passed |x|^2 / 4, (cm/s)^2 */
+    int32_t sxy[2];   /* low-passed y conj(x) / 4, real and imaginary, (cm/s)^2 */
+    int32_t a_q14[2]; /* A, real and imaginary, Q14, from the last turn */
+    int32_t w_q8[2];  /* W = my - A mx from the last turn, north and east, cm/s, Q8 */
+    uint8_t primed;   /* the low passes hold a sample */
+} ht_dcm_wind_t;
+
 typedef struct {
     int32_t r[3][3];          /* the matrix, Q30 (2^30 = 1.0) */
     int32_t bias[3];          /* integral of the PI loop = gyro-bias estimate, rad/s, Q30 */
@@ -207,6 +228,7 @@ typedef struct {
                                  saturation (one second at the IMU rate) */
     ht_dcm_ga_t ga;           /* the GPS acceleration reference */
     uint16_t gps_age_samples; /* samples since the last gps_fresh (saturates) */
+    ht_dcm_wind_t wind;       /* the wind estimate */
     uint16_t flags;
     uint32_t samples;
 } ht_dcm_state_t;

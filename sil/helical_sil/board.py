@@ -90,7 +90,7 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
 # ABI 8: the estimator's parameters (dcm.h defaults; imu_rate_hz is the
 # scenario's sim rate, set by sim.board_config).
 ESTIMATOR_CONFIG_DEFAULTS: dict[str, Any] = {
-    "dcm_kp_rollpitch": 0.2, "dcm_ki_rollpitch": 0.01, "dcm_kp_yaw": 0.5, "dcm_ki_yaw": 0.02,
+    "dcm_kp_rollpitch": 0.4, "dcm_ki_rollpitch": 0.04, "dcm_kp_yaw": 0.5, "dcm_ki_yaw": 0.02,
     "dcm_gyro_bias_max_deg_s": 5.7, "dcm_gyro_limit_deg_s": 2000.0, "dcm_accel_limit_g": 16.0,
     "dcm_accel_band_g": 0.5, "dcm_gps_min_speed_m_s": 3.0, "dcm_centripetal": 2,
     "dcm_gps_latency_s": 0.1,

@@ -226,8 +226,8 @@ def estimator_config(sc: Scenario) -> dict[str, float]:
     e = sc.estimator
     return {
         "imu_rate_hz": sc.sim_rate_hz,
-        "dcm_kp_rollpitch": e.get("kp_rollpitch", 0.2),
-        "dcm_ki_rollpitch": e.get("ki_rollpitch", 0.01),
+        "dcm_kp_rollpitch": e.get("kp_rollpitch", 0.4),
+        "dcm_ki_rollpitch": e.get("ki_rollpitch", 0.04),
         "dcm_kp_yaw": e.get("kp_yaw", 0.5), "dcm_ki_yaw": e.get("ki_yaw", 0.02),
         "dcm_gyro_bias_max_deg_s": e.get("gyro_bias_max_deg_s", 5.7),
         "dcm_gyro_limit_deg_s": math.degrees(model.imu.gyro.range_rad_s),
