@@ -85,7 +85,7 @@ imu_status_t icm42688p_init(const imu_spi_bus_t *bus, uint8_t lpf)
         st = imu_spi_write_seq(bus, config, n_config);
     }
     if (st == IMU_OK) {
-        /* DS 12.x: no register write for 200 us after a sensor leaves OFF
+        /* DS PWR_MGMT0: no register write for 200 us after a sensor leaves OFF
          * (reads are fine, but the wait keeps the rule simple) */
         bus->delay_us(bus->ctx, ICM42688P_POWER_ON_WAIT_US);
         st = imu_spi_verify_seq(bus, config, n_config);

@@ -3,9 +3,8 @@
  * the driver's steps (imu_spi.h calls them; tests call them directly).
  *
  * Source: ICM-42688-P datasheet DS-000347 rev 1.x: section 3 (table 1 gyro:
- * 16.4 LSB per deg/s at +/-2000, table 2 accel: 2048 LSB/g at +/-16 g), 9
- * (SPI: read bit, 24 MHz, modes 0 and 3), 12.x (power modes: no register
- * write for 200 us after a sensor leaves OFF), 13/14 (bank-0 register map,
+ * 16.4 LSB per deg/s at +/-2000, table 2 accel: 2048 LSB/g at +/-16 g), the SPI
+ * interface section (read bit, 24 MHz, modes 0 and 3), 13/14 (bank-0 register map,
  * reset values, fields). Only bank 0 is used; the FIFO is not (data is read
  * from the registers at data-ready).
  */
@@ -51,8 +50,8 @@
     0x0Fu /* GYRO_MODE 11, ACCEL_MODE 11: low noise,                                               \
              temperature sensor on */
 
-/* Waits (DS 14.x DEVICE_CONFIG: 1 ms after a soft reset; 12.x: 200 us
- * without register writes after a sensor leaves OFF; table 1: gyro start-up
+/* Waits (DS 14.x DEVICE_CONFIG: 1 ms after a soft reset; PWR_MGMT0: 200
+ * us without register writes after a sensor leaves OFF; table 1: gyro start-up
  * 30 ms). */
 #define ICM42688P_RESET_WAIT_US    1000u
 #define ICM42688P_RESET_POLL_US    1000u

@@ -127,9 +127,9 @@ typedef struct {
     int16_t temp_cdeg;    /* the last good sample's die temperature, 0.01 degC */
 } imu_spi_t;
 
-/* The SPI clock limits (datasheets: MPU-6000 PS section 6.5 and register
- * map section 1: 1 MHz for every register, 20 MHz for reading the sensor and
- * interrupt registers only; ICM-42688-P DS-000347 section 9: 24 MHz). */
+/* The SPI clock limits (datasheets: MPU-6000 PS SPI interface section and
+ * register map section 1: 1 MHz for every register, 20 MHz for reading the sensor and
+ * interrupt registers only; ICM-42688-P DS-000347 SPI interface section: 24 MHz). */
 #define IMU_MPU6000_SCK_REG_HZ  1000000u
 #define IMU_MPU6000_SCK_DATA_HZ 20000000u
 #define IMU_ICM42688P_SCK_HZ    24000000u

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-/* DLPF_CFG per imu_lpf_t (RM 4.3 table: 1 -> 188 Hz gyro, 2 -> 98, 3 -> 42,
+/* DLPF_CFG per imu_lpf_t (RM, CONFIG register 26 table: 1 -> 188 Hz gyro, 2 -> 98, 3 -> 42,
  * 4 -> 20; any of 1..6 makes the gyro output rate 1 kHz). */
 static const uint8_t k_dlpf_cfg[IMU_LPF_COUNT] = {1u, 2u, 3u, 4u};
 
@@ -66,7 +66,7 @@ imu_status_t mpu6000_init(const imu_spi_bus_t *bus, uint8_t lpf)
     };
     const uint8_t n_config = (uint8_t)(sizeof config / sizeof config[0]);
 
-    /* every register access at 1 MHz (PS 6.5) */
+    /* every register access at 1 MHz (PS, SPI interface: 1 MHz for all registers) */
     imu_status_t st = imu_spi_set_clock(bus, IMU_MPU6000_SCK_REG_HZ);
     if (st == IMU_OK) {
         st = imu_spi_write_reg(bus, MPU6000_PWR_MGMT_1, MPU6000_PWR1_DEVICE_RESET);
@@ -75,7 +75,8 @@ imu_status_t mpu6000_init(const imu_spi_bus_t *bus, uint8_t lpf)
         st = wait_reset_done(bus);
     }
     if (st == IMU_OK) {
-        /* RM 4.28: on SPI, DEVICE_RESET then SIGNAL_PATH_RESET, 100 ms each */
+        /* RM, PWR_MGMT_1 register 107 notes: on SPI, DEVICE_RESET then SIGNAL_PATH_RESET, 100 ms
+         * each */
         st = imu_spi_write_reg(bus, MPU6000_SIGNAL_PATH_RESET, MPU6000_SPR_RESET_ALL);
     }
     if (st == IMU_OK) {
@@ -119,7 +120,7 @@ imu_status_t mpu6000_read_raw(const imu_spi_bus_t *bus, int16_t accel[3], int16_
     if (all_00 || all_ff) {
         return IMU_ERR_DATA;
     }
-    /* RM 4.17-4.19: ACCEL_XOUT_H .. GYRO_ZOUT_L, high byte first */
+    /* RM, registers 59-72: ACCEL_XOUT_H .. GYRO_ZOUT_L, high byte first */
     for (uint8_t i = 0u; i < 3u; ++i) {
         accel[i] = imu_be16(&b[2u * i]);
         gyro[i] = imu_be16(&b[8u + 2u * i]);

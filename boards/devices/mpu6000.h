@@ -5,8 +5,9 @@
  * Sources: "MPU-6000 and MPU-6050 Register Map and Descriptions" RM-MPU-6000A-00
  * rev 4.2 (section 3 register map, sections 4.x per register, reset values in
  * section 3: 0x00 except PWR_MGMT_1 = 0x40 and WHO_AM_I = 0x68) and "Product
- * Specification" PS-MPU-6000A-00 rev 3.4 (section 6.1/6.2 sensitivities and
- * start-up times, 6.5 SPI clock limits, 7.5 axes).
+ * Specification" PS-MPU-6000A-00 rev 3.4 (sections 6.1/6.2 gyro and
+ * accelerometer specifications: sensitivities, start-up time; the SPI
+ * interface section: clock limits; the orientation-of-axes figure).
  */
 #ifndef HT_MPU6000_H
 #define HT_MPU6000_H
@@ -17,7 +18,7 @@
 
 #define MPU6000_WHO_AM_I_VALUE 0x68u
 
-/* Registers (RM section 3) */
+/* Registers (RM section 3, register map) */
 #define MPU6000_SMPLRT_DIV        0x19u /* sample rate = gyro output rate / (1 + div) */
 #define MPU6000_CONFIG            0x1Au /* DLPF_CFG bits 2:0, EXT_SYNC_SET 5:3 */
 #define MPU6000_GYRO_CONFIG       0x1Bu /* FS_SEL bits 4:3 */
@@ -30,14 +31,14 @@
 #define MPU6000_USER_CTRL         0x6Au
 #define MPU6000_PWR_MGMT_1        0x6Bu
 
-/* Values written (RM section 4.x) */
+/* Values written (RM section 4, each register's description) */
 #define MPU6000_PWR1_DEVICE_RESET 0x80u /* bit 7, clears itself when the reset is done */
 #define MPU6000_PWR1_SLEEP        0x40u /* bit 6, set after reset */
 #define MPU6000_PWR1_CLK_PLL_ZG                                                                    \
-    0x03u                             /* CLKSEL 3: PLL on the Z gyro (RM 4.28 recommends a         \
-                                         gyro reference over the 8 MHz oscillator) */
+    0x03u /* CLKSEL 3: PLL on the Z gyro (RM, PWR_MGMT_1 notes recommend a                         \
+             gyro reference over the 8 MHz oscillator) */
 #define MPU6000_SPR_RESET_ALL   0x07u /* GYRO_RESET | ACCEL_RESET | TEMP_RESET */
-#define MPU6000_USER_I2C_IF_DIS 0x10u /* bit 4: SPI only (PS 6.5: disable I2C on SPI) */
+#define MPU6000_USER_I2C_IF_DIS 0x10u /* bit 4: SPI only (PS SPI section: disable I2C on SPI) */
 #define MPU6000_SMPLRT_1KHZ     0x00u /* 1 kHz / (1 + 0) with the DLPF on */
 #define MPU6000_FS_2000DPS      0x18u /* FS_SEL 3: +/-2000 deg/s, 16.4 LSB per deg/s */
 #define MPU6000_AFS_16G         0x18u /* AFS_SEL 3: +/-16 g, 2048 LSB/g */
@@ -46,8 +47,8 @@
              INT_RD_CLEAR 1: any read clears the status */
 #define MPU6000_INT_DATA_RDY_EN 0x01u
 
-/* Waits (RM 4.28: 100 ms after DEVICE_RESET and after SIGNAL_PATH_RESET on
- * SPI; PS 6.1: gyro start-up 30 ms from sleep). */
+/* Waits (RM PWR_MGMT_1 notes: 100 ms after DEVICE_RESET and after SIGNAL_PATH_RESET on
+ * SPI; PS 6.1: gyro start-up time 30 ms from sleep). */
 #define MPU6000_RESET_WAIT_US   100000u
 #define MPU6000_RESET_POLL_US   10000u
 #define MPU6000_RESET_POLLS     10u
@@ -75,7 +76,7 @@ imu_status_t mpu6000_init(const imu_spi_bus_t *bus, uint8_t lpf);
 imu_status_t mpu6000_read_raw(const imu_spi_bus_t *bus, int16_t accel[3], int16_t gyro[3],
                               int16_t *temp);
 
-/* Die temperature: TEMP_OUT / 340 + 36.53 degC (RM 4.18), in 0.01 degC. */
+/* Die temperature: TEMP_OUT / 340 + 36.53 degC (RM, TEMP_OUT registers 65-66), in 0.01 degC. */
 int16_t mpu6000_temp_cdeg(int16_t raw);
 
 #endif /* HT_MPU6000_H */
