@@ -20,6 +20,30 @@ void stm32_gpio_set_af(stm32_gpio_t *port, uint8_t pin, uint8_t af)
         (port->MODER & ~((uint32_t)3u << mode_shift)) | ((uint32_t)GPIO_MODER_AF << mode_shift);
 }
 
+void stm32_gpio_write(stm32_gpio_t *port, uint8_t pin, uint8_t high)
+{
+    if (port == NULL || pin > 15u) {
+        return;
+    }
+    const uint32_t shift = (high != 0u) ? (uint32_t)pin : (uint32_t)pin + GPIO_BSRR_RESET_SHIFT;
+    port->BSRR = (uint32_t)1u << shift;
+}
+
+void stm32_gpio_set_output(stm32_gpio_t *port, uint8_t pin, uint8_t high)
+{
+    if (port == NULL || pin > 15u) {
+        return;
+    }
+    stm32_gpio_write(port, pin, high);
+    const uint32_t pin32 = pin;
+    port->OTYPER &= ~((uint32_t)1u << pin32); /* push-pull */
+    const uint32_t shift2 = 2u * pin32;
+    port->OSPEEDR =
+        (port->OSPEEDR & ~((uint32_t)3u << shift2)) | ((uint32_t)GPIO_OSPEEDR_FAST << shift2);
+    port->MODER =
+        (port->MODER & ~((uint32_t)3u << shift2)) | ((uint32_t)GPIO_MODER_OUTPUT << shift2);
+}
+
 void stm32_rcc_enable_servo_clocks(stm32_rcc_t *rcc)
 {
     if (rcc == NULL) {

@@ -115,9 +115,13 @@ _Static_assert((size_t)offsetof(stm32_gpio_t, AFR) == 0x20u, "GPIO AFRL offset")
 
 #define STM32_GPIOA_BASE 0x40020000u
 #define STM32_GPIOB_BASE 0x40020400u
+#define STM32_GPIOC_BASE 0x40020800u
 
+#define GPIO_MODER_OUTPUT       1u /* general-purpose output */
 #define GPIO_MODER_AF           2u
-#define GPIO_AF2_TIM3_TIM4_TIM5 2u /* AF2 selects TIM3..TIM5 channels */
+#define GPIO_OSPEEDR_FAST       2u  /* 10: fast speed (RM0090 8.4.3) */
+#define GPIO_BSRR_RESET_SHIFT   16u /* BSRR bits 31:16 reset a pin, 15:0 set it */
+#define GPIO_AF2_TIM3_TIM4_TIM5 2u  /* AF2 selects TIM3..TIM5 channels */
 
 /* --- SysTick (ARMv7-M, at 0xE000E010) ----------------------------------- */
 typedef struct {
