@@ -25,10 +25,11 @@ stm32_ppm_status_t stm32_ppm_init(stm32_ppm_t *p, stm32_tim_t *tim, uint8_t chan
         (edge != STM32_PPM_RISING && edge != STM32_PPM_FALLING)) {
         return STM32_PPM_ERR_RANGE;
     }
-    const uint8_t ch0 = (uint8_t)(channel - 1u);
+    const uint32_t ch0_32 = (uint32_t)channel - 1u; /* channel in 1..4: 0..3 */
+    const uint8_t ch0 = (uint8_t)ch0_32;
     const uint32_t psc = timer_clk_hz / STM32_PPM_TICK_HZ - 1u;
     /* Channels 1, 2 live in CCMR1 (low, high byte), 3, 4 in CCMR2. */
-    const uint32_t ccmr_shift = 8u * (uint32_t)(ch0 % 2u);
+    const uint32_t ccmr_shift = 8u * (ch0_32 % 2u);
     const uint32_t ccmr_byte = (TIM_CCMR_ICF_CK_N8 << TIM_CCMR_ICF_SHIFT) | TIM_CCMR_CCS_TI;
     const uint32_t ccmr = ccmr_byte << ccmr_shift;
     uint32_t ccer = TIM_CCER_CCE(ch0);
@@ -86,7 +87,11 @@ static void publish(stm32_ppm_t *p)
 {
     p->seq = p->seq + 1u; /* odd: being written */
     for (unsigned i = 0u; i < STM32_PPM_MAX_CHANNELS; ++i) {
-        p->frame_us[i] = (i < p->count) ? p->building_us[i] : 0u;
+        if (i < p->count) {
+            p->frame_us[i] = p->building_us[i];
+        } else {
+            p->frame_us[i] = 0u;
+        }
     }
     p->frame_channels = p->count;
     p->seq = p->seq + 1u; /* even: complete */
@@ -160,13 +165,14 @@ static void on_capture(stm32_ppm_t *p, uint16_t value, int lost_edge)
     }
     /* Over 16 bits the difference is right whenever the counter wrapped at
      * most once and the value is below the last one (or it did not wrap). */
-    const uint16_t width = (uint16_t)(value - last);
+    const uint32_t diff = (uint32_t)value - (uint32_t)last;
+    const uint32_t width_us = diff & 0xFFFFu;
     if (wraps >= 2u || (wraps == 1u && value >= last)) {
         count32(&p->long_gaps);
         on_sync(p); /* 65536 us or more without an edge: longer than any sync */
         return;
     }
-    on_interval(p, width);
+    on_interval(p, width_us);
 }
 
 static void on_wrap(stm32_ppm_t *p)
@@ -193,7 +199,8 @@ void stm32_ppm_isr(stm32_ppm_t *p)
     }
     const int wrapped = (sr & TIM_SR_UIF) != 0u;
     if ((sr & ccif) != 0u) {
-        const uint16_t value = (uint16_t)(t->CCR[p->ch0] & 0xFFFFu); /* clears CCxIF */
+        const uint32_t ccr = t->CCR[p->ch0] & 0xFFFFu; /* the read clears CCxIF */
+        const uint16_t value = (uint16_t)ccr;
         /* Both pending: a capture in the lower half of the count came after
          * the wrap (the wrap is at most one handler latency old), one in the
          * upper half before it. */
@@ -237,7 +244,11 @@ stm32_ppm_status_t stm32_ppm_read_us(stm32_ppm_t *p, uint16_t pulse_us[], uint8_
         return STM32_PPM_NO_DATA;
     }
     for (uint8_t i = 0u; i < count; ++i) {
-        pulse_us[i] = (i < channels) ? copy[i] : 0u;
+        if (i < channels) {
+            pulse_us[i] = copy[i];
+        } else {
+            pulse_us[i] = 0u;
+        }
     }
     const int fresh = seq != p->seq_read;
     p->seq_read = seq;

@@ -17,7 +17,8 @@ static uint32_t brr_of(uint32_t pclk_hz, uint32_t baud)
     if (baud < STM32_USART_BAUD_MIN || baud > STM32_USART_BAUD_MAX) {
         return 0u;
     }
-    const uint64_t rounded = ((uint64_t)pclk_hz + (uint64_t)(baud / 2u)) / (uint64_t)baud;
+    const uint32_t half = baud / 2u;
+    const uint64_t rounded = ((uint64_t)pclk_hz + (uint64_t)half) / (uint64_t)baud;
     if (rounded < 16u || rounded > 0xFFFFu) {
         return 0u;
     }
