@@ -45,8 +45,15 @@ _Static_assert((size_t)offsetof(stm32_tim_t, CCR) == 0x34u, "TIM CCR1 offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, DCR) == 0x48u, "TIM DCR offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, OR) == 0x50u, "TIM OR offset");
 
+#define STM32_TIM2_BASE 0x40000000u /* APB1; TIM2 and TIM5 have 32-bit counters */
 #define STM32_TIM3_BASE 0x40000400u /* APB1 */
 #define STM32_TIM4_BASE 0x40000800u
+#define STM32_TIM5_BASE 0x40000C00u
+/* Their interrupt lines (RM0090 table 61) */
+#define STM32_TIM2_IRQN 28u
+#define STM32_TIM3_IRQN 29u
+#define STM32_TIM4_IRQN 30u
+#define STM32_TIM5_IRQN 50u
 
 /* TIMx_CR1 */
 #define TIM_CR1_CEN  (1u << 0) /* counter enable */
@@ -59,8 +66,27 @@ _Static_assert((size_t)offsetof(stm32_tim_t, OR) == 0x50u, "TIM OR offset");
 #define TIM_CCMR_OCM_SHIFT   4u        /* OCxM[2:0] at bits 6:4 */
 #define TIM_CCMR_OCM_PWM1    6u        /* 110: PWM mode 1, high while CNT < CCR */
 #define TIM_CCMR_CH_HI_SHIFT 8u        /* the second channel of the pair */
-/* TIMx_CCER: CCxE at bit 4*(x-1) */
+/* TIMx_CCMRx (input capture, section 18.4.7): per channel byte, CCxS[1:0]
+ * = 01 maps ICx on TIx; ICxPSC[3:2] = 00 captures every edge; ICxF[7:4] is
+ * the input filter (0011: sampled at f_CK_INT, a level must hold N = 8
+ * samples). */
+#define TIM_CCMR_CCS_TI    1u
+#define TIM_CCMR_ICF_SHIFT 4u
+#define TIM_CCMR_ICF_CK_N8 3u
+/* TIMx_CCER: CCxE at bit 4*(x-1); CCxP one above: for an input, 0 captures
+ * rising edges, 1 falling ones (section 18.4.9) */
 #define TIM_CCER_CCE(ch0) ((uint32_t)1u << (4u * (ch0))) /* ch0 = channel - 1 */
+#define TIM_CCER_CCP(ch0) ((uint32_t)2u << (4u * (ch0)))
+/* TIMx_DIER (section 18.4.4): UIE bit 0, CCxIE bit x */
+#define TIM_DIER_UIE       (1u << 0)
+#define TIM_DIER_CCIE(ch0) ((uint32_t)2u << (ch0))
+/* TIMx_SR (section 18.4.5), rc_w0 (write 0 clears, 1 leaves): UIF bit 0,
+ * CCxIF bit x (also cleared by reading CCRx), CCxOF bit x + 8 (a capture
+ * came while CCxIF was still set: an edge was lost) */
+#define TIM_SR_UIF        (1u << 0)
+#define TIM_SR_CCIF(ch0)  ((uint32_t)2u << (ch0))
+#define TIM_SR_CCOF(ch0)  ((uint32_t)0x200u << (ch0))
+#define TIM_SR_RC_W0_BITS 0x1E5Fu /* UIF, CC1IF..CC4IF, TIF, CC1OF..CC4OF */
 
 /* --- RCC (RM0090 section 7.3) -------------------------------------------- */
 typedef struct {

@@ -6,6 +6,22 @@
  *   BRR = round(f_pclk / baud) with 16x oversampling:
  *         16 MHz, 115200 baud: 138.9 -> 139 = 0x8B (mantissa 8, fraction 11)
  *         84 MHz, 921600 baud: 91.1  -> 91  = 0x5B
+ *   8E2 (SBUS; section 30.3.2 table 137, 30.6.4 CR1, 30.6.5 CR2):
+ *         CR1 = UE | M (bit 12) | PCE (bit 10) | TE | RE, PS (bit 9) = 0
+ *             = 0x2000 + 0x1000 + 0x0400 + 0x8 + 0x4 = 0x340C
+ *         CR2 = STOP[13:12] = 10 (two stop bits) = 0x2000
+ *   BRR and the real rate f_pclk / BRR (section 30.3.4: baud = f_pclk /
+ *   (16 USARTDIV), BRR = USARTDIV * 16), error = (f_pclk / BRR - baud) / baud:
+ *     CRSF 420000, PCLK2 84 MHz: 200 = 0xC8 (USARTDIV 12.5)      0 ppm
+ *     CRSF 420000, PCLK1 42 MHz: 100 = 0x64 (USARTDIV 6.25)      0 ppm
+ *     CRSF 420000, HSI 16 MHz:   38.10 -> 38 = 0x26: 421052.6 baud, +2506 ppm
+ *     SBUS 100000, PCLK1 42 MHz: 420 = 0x1A4 (USARTDIV 26.25)    0 ppm
+ *     SBUS 100000, PCLK2 84 MHz: 840 = 0x348 (USARTDIV 52.5)     0 ppm
+ *     115200, 16 MHz: 139: 16e6 - 139 * 115200 = -12800; / 16012800 = -799 ppm
+ *     115200, 84 MHz: 729.17 -> 729: +19200 / 83980800 = +228.6 -> +229 ppm
+ *     115200, 42 MHz: 364.58 -> 365: -48000 / 42048000 = -1141.6 -> -1142 ppm
+ *   All well inside the receiver's tolerance with 16x oversampling (RM0090
+ *   section 30.3.5, about 3.75 % for 8-bit words with DIV_Fraction 0).
  * A fake block keeps what was written and never changes a flag by itself, so
  * each test sets SR as the hardware would.
  */
@@ -138,6 +154,101 @@ static void test_rx_irq_enable(void)
     stm32_usart_enable_rx_irq(NULL);
 }
 
+static void test_init_8e2_sbus_from_pclk1(void)
+{
+    regs.CR2 = 0x1000u; /* half a stop bit left over */
+    regs.CR3 = 0x0300u;
+    TEST_ASSERT_EQUAL(STM32_USART_OK,
+                      stm32_usart_init_format(&usart, &regs, 42000000u, 100000u, STM32_USART_8E2));
+    TEST_ASSERT_EQUAL_HEX32(0x1A4u, regs.BRR);
+    TEST_ASSERT_EQUAL_HEX32(0x340Cu, regs.CR1);
+    TEST_ASSERT_EQUAL_HEX32(0x2000u, regs.CR2);
+    TEST_ASSERT_EQUAL_HEX32(0x0u, regs.CR3);
+    TEST_ASSERT_EQUAL_UINT8(1u, usart.ready);
+    /* even parity: PS clear */
+    TEST_ASSERT_EQUAL_HEX32(0u, regs.CR1 & USART_CR1_PS);
+    TEST_ASSERT_EQUAL(STM32_USART_OK,
+                      stm32_usart_init_format(&usart, &regs, 84000000u, 100000u, STM32_USART_8E2));
+    TEST_ASSERT_EQUAL_HEX32(0x348u, regs.BRR);
+    /* back to 8N1 on the same block: M, PCE and STOP cleared */
+    TEST_ASSERT_EQUAL(STM32_USART_OK,
+                      stm32_usart_init_format(&usart, &regs, 84000000u, 420000u, STM32_USART_8N1));
+    TEST_ASSERT_EQUAL_HEX32(0x200Cu, regs.CR1);
+    TEST_ASSERT_EQUAL_HEX32(0x0u, regs.CR2);
+}
+
+static void test_init_420000_crsf(void)
+{
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_init(&usart, &regs, 84000000u, 420000u));
+    TEST_ASSERT_EQUAL_HEX32(0xC8u, regs.BRR);
+    TEST_ASSERT_EQUAL_HEX32(0x200Cu, regs.CR1);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_init(&usart, &regs, 42000000u, 420000u));
+    TEST_ASSERT_EQUAL_HEX32(0x64u, regs.BRR);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_init(&usart, &regs, 16000000u, 420000u));
+    TEST_ASSERT_EQUAL_HEX32(0x26u, regs.BRR);
+}
+
+static void test_init_format_refused(void)
+{
+    regs.CR1 = 0x1234u;
+    TEST_ASSERT_EQUAL(
+        STM32_USART_ERR_RANGE,
+        stm32_usart_init_format(&usart, &regs, 84000000u, 100000u, (stm32_usart_format_t)2));
+    TEST_ASSERT_EQUAL(STM32_USART_ERR_RANGE,
+                      stm32_usart_init_format(&usart, &regs, 84000000u, 1000u, STM32_USART_8E2));
+    TEST_ASSERT_EQUAL_HEX32(0x1234u, regs.CR1);
+    TEST_ASSERT_EQUAL_HEX32(0x0u, regs.CR2);
+    TEST_ASSERT_EQUAL_HEX32(0x0u, regs.BRR);
+    TEST_ASSERT_EQUAL_UINT8(0u, usart.ready);
+    TEST_ASSERT_EQUAL(STM32_USART_ERR_NULL,
+                      stm32_usart_init_format(NULL, &regs, 84000000u, 100000u, STM32_USART_8E2));
+}
+
+static void test_baud_error_ppm(void)
+{
+    int32_t ppm = 12345;
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(84000000u, 420000u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(0, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(42000000u, 420000u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(0, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(42000000u, 100000u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(0, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(16000000u, 420000u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(2506, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(16000000u, 115200u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(-799, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(84000000u, 115200u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(229, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_OK, stm32_usart_baud_error_ppm(42000000u, 115200u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(-1142, ppm);
+    ppm = 7;
+    TEST_ASSERT_EQUAL(STM32_USART_ERR_RANGE, stm32_usart_baud_error_ppm(16000000u, 2000000u, &ppm));
+    TEST_ASSERT_EQUAL_INT32(7, ppm);
+    TEST_ASSERT_EQUAL(STM32_USART_ERR_NULL, stm32_usart_baud_error_ppm(16000000u, 115200u, NULL));
+}
+
+static void test_read_flags(void)
+{
+    uint8_t b = 0;
+    uint32_t err = 0xFFu;
+    TEST_ASSERT_EQUAL(STM32_USART_OK,
+                      stm32_usart_init_format(&usart, &regs, 42000000u, 100000u, STM32_USART_8E2));
+    regs.SR = USART_SR_RXNE;
+    regs.DR = 0x10Fu; /* 0x0F with its parity bit in bit 8 */
+    TEST_ASSERT_EQUAL_INT(1, stm32_usart_read_flags(&usart, &b, &err));
+    TEST_ASSERT_EQUAL_HEX8(0x0Fu, b);
+    TEST_ASSERT_EQUAL_HEX32(0u, err);
+    regs.SR = USART_SR_RXNE | USART_SR_PE | USART_SR_TXE | USART_SR_IDLE;
+    TEST_ASSERT_EQUAL_INT(1, stm32_usart_read_flags(&usart, &b, &err));
+    TEST_ASSERT_EQUAL_HEX32(USART_SR_PE, err); /* only the error bits */
+    TEST_ASSERT_EQUAL_UINT16(1u, usart.parity);
+    regs.SR = USART_SR_IDLE; /* idle alone: nothing to read */
+    err = 0xFFu;
+    TEST_ASSERT_EQUAL_INT(0, stm32_usart_read_flags(&usart, &b, &err));
+    TEST_ASSERT_EQUAL_HEX32(0xFFu, err);
+    TEST_ASSERT_EQUAL_INT(0, stm32_usart_read_flags(&usart, &b, NULL));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -149,5 +260,10 @@ int main(void)
     RUN_TEST(test_write);
     RUN_TEST(test_write_times_out);
     RUN_TEST(test_rx_irq_enable);
+    RUN_TEST(test_init_8e2_sbus_from_pclk1);
+    RUN_TEST(test_init_420000_crsf);
+    RUN_TEST(test_init_format_refused);
+    RUN_TEST(test_baud_error_ppm);
+    RUN_TEST(test_read_flags);
     return UNITY_END();
 }
