@@ -249,7 +249,9 @@ static void air_velocity(const int32_t r[3][3], int32_t v, int32_t climb, int32_
     const int32_t r22_q15 = qi_rshift_round(r[2][2], 15u);
     int32_t vz_q8 = 0;
     if (r22_q15 >= 8192 || r22_q15 <= -8192) {
-        const int32_t num_q8 = clamp32(-climb - qi_mul32(v, r[2][1], 30u), 65535) * 256;
+        /* V R[2][1] kept in Q8: rounded to cm/s it moved vz by up to 0.5 cm/s */
+        const int32_t num_q8 =
+            clamp32((-climb * 256) - qi_mul32(v, r[2][1], 22u), (int32_t)65535 * 256);
         const int32_t quot = num_q8 / r22_q15; /* |.| <= 2^24 / 2^13 */
         const int32_t rem = num_q8 % r22_q15;  /* |.| < 49152: times 2^15 fits */
         vz_q8 = clamp32((quot * 32768) + ((rem * 32768) / r22_q15), v * 128);
@@ -751,7 +753,10 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     const uint8_t acc_sat = ((sample_flags & (uint32_t)HT_DCM_F_ACCEL_SATURATED) != 0u) ? 1u : 0u;
     dcm_ga_sample(d, &s->ga, cs->r, acc, acc_sat, a);
     uint8_t rate_gate = 1u;
-    if (dcm_ga_error(&s->ga, cs->r, e_rp) != 0) {
+    /* a heading is trusted once a turn has taught the wind, or with a
+     * magnetometer (dcm_gps_accel.c drop_heading_term) */
+    const uint8_t heading_trusted = (s->wind.solved != 0u || a->mag_valid != 0u) ? 1u : 0u;
+    if (dcm_ga_error(&s->ga, cs->r, heading_trusted, e_rp) != 0) {
         /* the GPS acceleration: the w x v model and its filters rest (they
          * restart from this sample's reference when the GPS goes) */
         flags |= (uint16_t)HT_DCM_F_GPS_ACCEL;

@@ -27,6 +27,11 @@ void dcm_ga_reset(ht_dcm_ga_t *g)
 }
 
 /* The chain of consecutive intervals is broken: the window refills. */
+/* sin^2(10 deg) in Q28 and its reciprocal (33.163) in Q24: the lean above
+ * which the heading term is dropped whole */
+#define H0_SQ_Q28     ((int32_t)8094319)
+#define INV_H0_SQ_Q24 ((int32_t)556390154)
+
 static void break_chain(ht_dcm_ga_t *g)
 {
     g->count = 0u;
@@ -131,6 +136,8 @@ static void window_error(const ht_dcm_t *d, ht_dcm_ga_t *g)
     /* Q28 * Q28 / 2^26 = Q30 */
     g->err_q30[0] = qi_mul32_fit(u_imu[1], u_gps[2], 26u) - qi_mul32_fit(u_imu[2], u_gps[1], 26u);
     g->err_q30[1] = qi_mul32_fit(u_imu[2], u_gps[0], 26u) - qi_mul32_fit(u_imu[0], u_gps[2], 26u);
+    g->h_q28[0] = u_gps[0];
+    g->h_q28[1] = u_gps[1];
     g->err_valid = 1u;
 }
 
@@ -202,7 +209,35 @@ void dcm_ga_sample(const ht_dcm_t *d, ht_dcm_ga_t *g, const int32_t r[3][3], con
     }
 }
 
-int dcm_ga_error(const ht_dcm_ga_t *g, const int32_t r[3][3], int32_t e[3])
+/*
+ * Without a trusted heading, the part of the error about h's direction,
+ * weighted by min(1, |h|^2 / sin^2(10 deg)), is dropped. Why: in a turn the
+ * specific force leans by phi toward the centre (|h| = sin phi), and a
+ * heading error d turns h about the vertical; the error reads that as a
+ * tilt about h's direction of d sin phi cos phi (9 degrees for a 22-degree
+ * crab at 30 degrees of bank), beside the true tilt about it. The tilt
+ * across h (the bank's error) carries no heading term and is kept.
+ */
+static void drop_heading_term(const ht_dcm_ga_t *g, int32_t err[2])
+{
+    int32_t hn;
+    int32_t he;
+    if (q_unit2_q28(g->h_q28[0], g->h_q28[1], &hn, &he) == 0) {
+        return; /* no lean: nothing to drop */
+    }
+    const int32_t h2_q28 =
+        qi_mul32(g->h_q28[0], g->h_q28[0], 28u) + qi_mul32(g->h_q28[1], g->h_q28[1], 28u);
+    int32_t w_q30 = (int32_t)0x40000000; /* 1 in Q30 */
+    if (h2_q28 < H0_SQ_Q28) {
+        w_q30 = qi_mul32(h2_q28, INV_H0_SQ_Q24, 22u); /* < 2^30 */
+    }
+    const int32_t along =
+        qi_mul32(qi_mul32(err[0], hn, 28u) + qi_mul32(err[1], he, 28u), w_q30, 30u);
+    err[0] -= qi_mul32(along, hn, 28u);
+    err[1] -= qi_mul32(along, he, 28u);
+}
+
+int dcm_ga_error(const ht_dcm_ga_t *g, const int32_t r[3][3], uint8_t heading_trusted, int32_t e[3])
 {
     if (g->err_valid == 0u) {
         e[0] = 0;
@@ -210,11 +245,14 @@ int dcm_ga_error(const ht_dcm_ga_t *g, const int32_t r[3][3], int32_t e[3])
         e[2] = 0;
         return 0;
     }
+    int32_t err[2] = {g->err_q30[0], g->err_q30[1]};
+    if (heading_trusted == 0u) {
+        drop_heading_term(g, err);
+    }
     /* earth to body: e_body = R^T e_earth, the vertical component 0 (see
      * window_error) */
     for (unsigned j = 0u; j < 3u; j++) {
-        e[j] = qi_add_sat32(qi_mul32(r[0][j], g->err_q30[0], 30u),
-                            qi_mul32(r[1][j], g->err_q30[1], 30u));
+        e[j] = qi_add_sat32(qi_mul32(r[0][j], err[0], 30u), qi_mul32(r[1][j], err[1], 30u));
     }
     return 1;
 }

@@ -42,8 +42,11 @@ void dcm_ga_sample(const ht_dcm_t *d, ht_dcm_ga_t *g, const int32_t r[3][3], con
 
 /*
  * The roll/pitch error (Q30, body axes, as rollpitch_error in dcm.c) from the
- * last window: 1 when there is one, 0 (e zeroed) when not.
+ * last window: 1 when there is one, 0 (e zeroed) when not. heading_trusted
+ * 0: the part a heading error would make in a turn is dropped (see
+ * drop_heading_term in dcm_gps_accel.c).
  */
-int dcm_ga_error(const ht_dcm_ga_t *g, const int32_t r[3][3], int32_t e[3]);
+int dcm_ga_error(const ht_dcm_ga_t *g, const int32_t r[3][3], uint8_t heading_trusted,
+                 int32_t e[3]);
 
 #endif /* HELICAL_DCM_GPS_ACCEL_H */

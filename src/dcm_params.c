@@ -35,9 +35,9 @@ void ht_dcm_params_default(ht_dcm_params_t *p)
         return;
     }
     p->imu_rate_hz = 200u;
-    /* Q16 of 0.2, 0.01, 0.5, 0.02, 0.1 and 34.9 (2000 deg/s), rounded */
-    p->kp_rollpitch = 13107;
-    p->ki_rollpitch = 655;
+    /* Q16 of 0.4, 0.04, 0.5, 0.02, 0.1 and 34.9 (2000 deg/s), rounded */
+    p->kp_rollpitch = 26214;
+    p->ki_rollpitch = 2621;
     p->kp_yaw = 32768;
     p->ki_yaw = 1311;
     p->gyro_bias_max_rad_s = 6554;

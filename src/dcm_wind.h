@@ -44,6 +44,9 @@
 
 #include "helical/dcm.h"
 
+/* A wind beyond 50 m/s per component is not taken (the fit is wrong). */
+#define DCM_WIND_MAX_CM_S 5000
+
 /*
  * One learning step at a new GPS solution. air_q8: the air velocity's
  * horizontal part in earth axes now (north, east; cm/s, Q8); gps_cm_s: the

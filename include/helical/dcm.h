@@ -194,6 +194,8 @@ typedef struct {
     int32_t vel_cm_s[HT_DCM_GA_WINDOW + 1u][3]; /* GPS velocities at the interval ends */
     int32_t err_q30[2];                         /* the last window's tilt error, earth north and
                                                    east components (sines), Q30 */
+    int32_t h_q28[2];                           /* the GPS specific force's direction, its
+                                                   horizontal part (sin of its lean), Q28 */
     uint8_t err_valid;
 } ht_dcm_ga_t;
 
@@ -206,11 +208,12 @@ typedef struct {
 typedef struct {
     int32_t mx_q8[2]; /* low-passed x, cm/s, Q8 */
     int32_t my_q8[2]; /* low-passed y, cm/s, Q8 */
-    int32_t sxx;      /* low-passed |x|^2 / 4, (cm/s)^2 */
-    int32_t sxy[2];   /* low-passed y conj(x) / 4, real and imaginary, (cm/s)^2 */
-    int32_t a_q14[2]; /* A, real and imaginary, Q14, from the last turn */
+    int32_t sxx;      /* low-passed |x|^2, (cm/s)^2 */
+    int32_t sxy[2];   /* low-passed y conj(x), real and imaginary, (cm/s)^2 */
+    int32_t a_q28[2]; /* A, real and imaginary, Q28, from the last turn */
     int32_t w_q8[2];  /* W = my - A mx from the last turn, north and east, cm/s, Q8 */
     uint8_t primed;   /* the low passes hold a sample */
+    uint8_t solved;   /* A and W came from a turn at least once since the reset */
 } ht_dcm_wind_t;
 
 typedef struct {

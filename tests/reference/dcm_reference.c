@@ -30,6 +30,7 @@ void dcmr_params_from(const ht_dcm_params_t *p, dcmr_params_t *o)
     o->centripetal = p->centripetal;
     o->imu_rate = p->imu_rate_hz;
     o->lat_samples = (int)((p->gps_latency_ms * p->imu_rate_hz + 500u) / 1000u);
+    o->wind_tau = (double)HT_DCM_WIND_TAU_S;
 }
 
 static void cross(const double a[3], const double b[3], double o[3])
@@ -117,9 +118,19 @@ static void air_velocity(const dcmr_state_t *s, double vv, double climb, double 
     v[2] = vz;
 }
 
+/* What the course step leaves for the wind's (dcm_wind.h) */
+typedef struct {
+    int course;    /* the GPS course aided the heading */
+    double air[2]; /* the air velocity's horizontal part, earth axes, cm/s */
+    double turn;   /* the heading's turn over the GPS velocity's age, rad */
+} dcmr_course_t;
+
 static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_dcm_aiding_t *a,
-                        const double v[3])
+                        const double v[3], dcmr_course_t *g)
 {
+    g->course = 0;
+    g->air[0] = s->r[0][1] * v[1] + s->r[0][2] * v[2];
+    g->air[1] = s->r[1][1] * v[1] + s->r[1][2] * v[2];
     const double nn0 = s->r[0][1], ne0 = s->r[1][1];
     const double nl = hypot(nn0, ne0);
     if (nl == 0.0) {
@@ -127,16 +138,18 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
     }
     const double nn = nn0 / nl, ne = ne0 / nl;
     if (a->gps_fix) {
-        const double vn = a->vel_ned_cm_s[0], ve = a->vel_ned_cm_s[1];
+        /* the GPS velocity through the air, v_gps - W */
+        const double vn = clampd(a->vel_ned_cm_s[0], 32767.0) - s->w[0];
+        const double ve = clampd(a->vel_ned_cm_s[1], 32767.0) - s->w[1];
         const double sp = hypot(vn, ve);
         if (sp > p->gps_min_speed_cm_s) {
-            /* the air velocity's direction (dcm.c velocity_heading) */
-            const double hn = s->r[0][1] * v[1] + s->r[0][2] * v[2];
-            const double he = s->r[1][1] * v[1] + s->r[1][2] * v[2];
+            g->course = 1;
+            /* the air velocity's direction (dcm.c air_earth) */
+            const double hn = g->air[0], he = g->air[1];
             const double hl = hypot(hn, he);
             const double dn = hl > 0.0 ? hn / hl : nn, de = hl > 0.0 ? he / hl : ne;
             /* the course carried forward by the heading rate times its age
-             * (dcm.c course_now), at most one second, 0.5 rad */
+             * (dcm.c gps_age_turn), at most one second, 0.5 rad */
             const int age = s->gps_age + p->lat_samples;
             const double t = (age > p->imu_rate ? p->imu_rate : age) * p->dt;
             double rq[3]; /* the rate as the library keeps it: Q16 */
@@ -145,6 +158,7 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
             }
             const double psi_dot = dot(s->r[2], rq);
             const double an = clampd(psi_dot * t, 0.5);
+            g->turn = an;
             const double cn = vn / sp, ce = ve / sp;
             const double c = cos(an), sn = sin(an);
             return nl * yaw_between(dn, de, cn * c - ce * sn, ce * c + cn * sn);
@@ -164,6 +178,73 @@ static double yaw_error(const dcmr_params_t *p, const dcmr_state_t *s, const ht_
         }
     }
     return 0.0;
+}
+
+/*
+ * The wind (dcm_wind.h): at a new solution that aided the course, with a
+ * live pitot, every rate within 20 deg/s and the nose within 60 degrees of
+ * the horizon, the regression of the GPS velocity y on the air velocity x
+ * (turned back to the epoch) learns; A and W follow in a turn.
+ */
+static void wind_step(const dcmr_params_t *p, dcmr_state_t *s, const ht_dcm_aiding_t *a,
+                      const dcmr_course_t *g, int period)
+{
+    if (!g->course || !a->gps_fresh || !a->airspeed_valid || a->airspeed_cm_s <= 0) {
+        return;
+    }
+    for (int i = 0; i < 3; i++) {
+        /* the rate as the library keeps it, Q16: the gate is a comparison */
+        if (fabs(round(s->rate[i] * 65536.0)) > 22876.0) {
+            return;
+        }
+    }
+    if (fabs(s->r[2][1]) > sin(60.0 * DCMR_PI / 180.0)) {
+        return;
+    }
+    const double c = cos(g->turn), sn = sin(g->turn);
+    const double x[2] = {clampd(g->air[0] * c + g->air[1] * sn, 23170.0),
+                         clampd(g->air[1] * c - g->air[0] * sn, 23170.0)};
+    const double y[2] = {clampd(a->vel_ned_cm_s[0], 23170.0), clampd(a->vel_ned_cm_s[1], 23170.0)};
+    const double xx = x[0] * x[0] + x[1] * x[1];
+    const double xy[2] = {y[0] * x[0] + y[1] * x[1], y[1] * x[0] - y[0] * x[1]};
+    if (!s->wind_primed) {
+        memcpy(s->mx, x, sizeof x);
+        memcpy(s->my, y, sizeof y);
+        s->sxx = xx;
+        memcpy(s->sxy, xy, sizeof xy);
+        s->a[0] = 1.0;
+        s->a[1] = 0.0;
+        s->wind_primed = 1;
+    } else {
+        const int n = period > p->imu_rate ? p->imu_rate : period;
+        const double al = n * p->dt / p->wind_tau;
+        for (int i = 0; i < 2; i++) {
+            s->mx[i] += (x[i] - s->mx[i]) * al;
+            s->my[i] += (y[i] - s->my[i]) * al;
+            s->sxy[i] += (xy[i] - s->sxy[i]) * al;
+        }
+        s->sxx += (xx - s->sxx) * al;
+    }
+    const double den = s->sxx - s->mx[0] * s->mx[0] - s->mx[1] * s->mx[1];
+    const double nr = s->sxy[0] - (s->my[0] * s->mx[0] + s->my[1] * s->mx[1]);
+    const double ni = s->sxy[1] - (s->my[1] * s->mx[0] - s->my[0] * s->mx[1]);
+    if (den <= 0.0 || den < s->sxx / 8.0) {
+        return;
+    }
+    const double ar = nr / den, ai = ni / den;
+    const double m2 = ar * ar + ai * ai;
+    if (fabs(ar) > 2.0 || fabs(ai) > 2.0 || ar <= 0.0 || m2 < 0.25 || m2 > 4.0) {
+        return;
+    }
+    s->a[0] = ar;
+    s->a[1] = ai;
+    const double wn = s->my[0] - (ar * s->mx[0] - ai * s->mx[1]);
+    const double we = s->my[1] - (ar * s->mx[1] + ai * s->mx[0]);
+    if (fabs(wn) <= 5000.0 && fabs(we) <= 5000.0) {
+        s->w[0] = wn;
+        s->w[1] = we;
+        s->wind_solved = 1;
+    }
 }
 
 void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3],
@@ -250,17 +331,20 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
             erp[i] *= w;
         }
     }
+    const int gps_period = s->gps_age + 1;
     s->gps_age = a->gps_fresh ? 0 : s->gps_age + 1;
     /* the GPS acceleration reference replaces the w x v one when it has a
      * window (dcm_gps_accel.c) */
     dcmr_ga_sample(p, &s->ga, s->r, acc, acc_sat, a);
     double ega[3];
-    const int ga = dcmr_ga_error(&s->ga, s->r, ega);
+    const int ga = dcmr_ga_error(&s->ga, s->r, s->wind_solved || a->mag_valid, ega);
     if (ga) {
         memcpy(erp, ega, sizeof ega);
         s->g_filt_valid = 0;
     }
-    const double ey = yaw_error(p, s, a, v_air);
+    dcmr_course_t gc;
+    const double ey = yaw_error(p, s, a, v_air, &gc);
+    wind_step(p, s, a, &gc, gps_period);
     /* the integral learns below 20 deg/s on every axis (dcm.c), unless the
      * reference is the GPS acceleration's */
     int learn = 1;

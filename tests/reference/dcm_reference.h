@@ -19,6 +19,7 @@ typedef struct {
     int centripetal; /* ht_dcm_cf_t */
     int imu_rate;    /* samples per second (the GPS timing counts samples) */
     int lat_samples; /* gps_latency_ms in samples, rounded */
+    double wind_tau; /* s (HT_DCM_WIND_TAU_S) */
 } dcmr_params_t;
 
 /* The GPS acceleration reference (dcm_gps_accel.h), in double. */
@@ -30,6 +31,7 @@ typedef struct {
     double dv[DCMR_GA_W][3], t[DCMR_GA_W]; /* per interval, oldest first */
     double vel[DCMR_GA_W + 1][3];          /* cm/s */
     double err[2];                         /* earth north, east */
+    double h[2];                           /* the GPS specific force's lean */
     int err_valid;
 } dcmr_ga_t;
 
@@ -46,6 +48,9 @@ typedef struct {
     int speed_prev_valid;
     int gps_age; /* samples since the last gps_fresh */
     dcmr_ga_t ga;
+    /* the wind regression y = W + A x (dcm_wind.h), complex as [re, im] */
+    double mx[2], my[2], sxx, sxy[2], a[2], w[2];
+    int wind_primed, wind_solved;
 } dcmr_state_t;
 
 /* One sample of the GPS acceleration reference (r: the matrix before this
@@ -54,7 +59,7 @@ void dcmr_ga_sample(const dcmr_params_t *p, dcmr_ga_t *g, double r[3][3], const 
                     int acc_sat, const ht_dcm_aiding_t *a);
 
 /* The body-axes tilt error of the last window; 0 when none. */
-int dcmr_ga_error(const dcmr_ga_t *g, double r[3][3], double e[3]);
+int dcmr_ga_error(const dcmr_ga_t *g, double r[3][3], int heading_trusted, double e[3]);
 
 /* The same parameters in real units (from the integer ones). */
 void dcmr_params_from(const ht_dcm_params_t *p, dcmr_params_t *out);

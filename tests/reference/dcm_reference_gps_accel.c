@@ -45,6 +45,8 @@ static void window_error(dcmr_ga_t *g)
     }
     g->err[0] = ui[1] * ug[2] - ui[2] * ug[1];
     g->err[1] = ui[2] * ug[0] - ui[0] * ug[2];
+    g->h[0] = ug[0];
+    g->h[1] = ug[1];
     g->err_valid = 1;
 }
 
@@ -113,10 +115,22 @@ void dcmr_ga_sample(const dcmr_params_t *p, dcmr_ga_t *g, double r[3][3], const 
     }
 }
 
-int dcmr_ga_error(const dcmr_ga_t *g, double r[3][3], double e[3])
+int dcmr_ga_error(const dcmr_ga_t *g, double r[3][3], int heading_trusted, double e[3])
 {
+    double err[2] = {g->err[0], g->err[1]};
+    const double h2 = g->h[0] * g->h[0] + g->h[1] * g->h[1];
+    if (!heading_trusted && h2 > 0.0) {
+        /* the part about the lean's direction, weighted by
+         * min(1, |h|^2 / sin^2(10 deg)), dropped (dcm_gps_accel.c) */
+        const double h0 = sin(10.0 * DCMR_PI / 180.0);
+        const double w = h2 >= h0 * h0 ? 1.0 : h2 / (h0 * h0);
+        const double hl = sqrt(h2), hn = g->h[0] / hl, he = g->h[1] / hl;
+        const double along = (err[0] * hn + err[1] * he) * w;
+        err[0] -= along * hn;
+        err[1] -= along * he;
+    }
     for (int j = 0; j < 3; j++) {
-        e[j] = g->err_valid ? r[0][j] * g->err[0] + r[1][j] * g->err[1] : 0.0;
+        e[j] = g->err_valid ? r[0][j] * err[0] + r[1][j] * err[1] : 0.0;
     }
     return g->err_valid;
 }

@@ -90,8 +90,8 @@ static void test_parameter_edges_each_field(void)
 static void test_defaults_and_derived_values(void)
 {
     TEST_ASSERT_EQUAL_UINT16(200u, prm.imu_rate_hz);
-    TEST_ASSERT_EQUAL_INT32(13107, prm.kp_rollpitch);
-    TEST_ASSERT_EQUAL_INT32(655, prm.ki_rollpitch);
+    TEST_ASSERT_EQUAL_INT32(26214, prm.kp_rollpitch);
+    TEST_ASSERT_EQUAL_INT32(2621, prm.ki_rollpitch);
     TEST_ASSERT_EQUAL_INT32(32768, prm.kp_yaw);
     TEST_ASSERT_EQUAL_INT32(1311, prm.ki_yaw);
     TEST_ASSERT_EQUAL_INT32(6554, prm.gyro_bias_max_rad_s);
@@ -112,6 +112,8 @@ static void test_defaults_and_derived_values(void)
         dt_init(&dq, &q);
         TEST_ASSERT_EQUAL_UINT16(20u, dq.gps_latency_samples);
         TEST_ASSERT_INT32_WITHIN(2, 82264143, dq.g_dt_q24); /* 82264142.64 */
+        /* the wind's weight per sample, dt / 20 s in Q30: 5368709 / 20 */
+        TEST_ASSERT_EQUAL_INT32(268435, dq.wind_alpha_q30); /* 268435.45 */
         q.imu_rate_hz = 333u;
         dt_init(&dq, &q);
         TEST_ASSERT_EQUAL_UINT16(33u, dq.gps_latency_samples); /* 33.3 */
@@ -121,6 +123,7 @@ static void test_defaults_and_derived_values(void)
         dt_init(&dq, &q);
         TEST_ASSERT_EQUAL_UINT16(25u, dq.gps_latency_samples);
         TEST_ASSERT_INT32_WITHIN(8, 329056571, dq.g_dt_q24); /* 329056570.57 */
+        TEST_ASSERT_EQUAL_INT32(1073742, dq.wind_alpha_q30); /* 21474836 / 20 = 1073741.8 */
     }
     ht_dcm_params_t p = prm;
     p.imu_rate_hz = 1000u;
