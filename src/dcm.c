@@ -764,6 +764,13 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
         rate_gate = 0u; /* no model error in a roll or a pull to keep out */
     } else {
         flags |= rollpitch_error(d, s, v_q8, v_gps, acc, flags, e_rp);
+        /* the w x v model's reference carries its model's errors (the
+         * airspeed, the angle of attack, the gyro bias through w): its loop
+         * runs at half the gains, those of a MatrixPilot-like DCM (kp 0.2,
+         * ki 0.02 at the defaults), which the GPS acceleration's doubles */
+        for (unsigned i = 0u; i < 3u; i++) {
+            e_rp[i] = qi_rshift_round(e_rp[i], 1u);
+        }
     }
     gps_course_t g = {Q30_ONE, 0, {0, 0}, 0u};
     air_earth(cs->r, v_q8, g.air_q8);

@@ -341,6 +341,11 @@ void dcmr_update(const dcmr_params_t *p, dcmr_state_t *s, const double gyro_in[3
     if (ga) {
         memcpy(erp, ega, sizeof ega);
         s->g_filt_valid = 0;
+    } else {
+        /* the w x v model's loop at half the gains (dcm.c) */
+        for (int i = 0; i < 3; i++) {
+            erp[i] *= 0.5;
+        }
     }
     dcmr_course_t gc;
     const double ey = yaw_error(p, s, a, v_air, &gc);

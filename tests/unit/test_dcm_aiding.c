@@ -256,8 +256,9 @@ static void test_accel_weight_across_the_band(void)
 {
     const double full = corr_at(1.0);
     TEST_ASSERT_TRUE((st.flags & HT_DCM_F_ACCEL_IGNORED) == 0u);
-    /* kp (0.4) * sin(10 deg), rolling left (-Y) toward level */
-    TEST_ASSERT_DOUBLE_WITHIN(1e-4, -(prm.kp_rollpitch / 65536.0) * sin(10 * DEG), full);
+    /* kp (0.4) / 2 (the w x v model's half gain) * sin(10 deg), rolling left
+     * (-Y) toward level */
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, -(prm.kp_rollpitch / 65536.0) / 2 * sin(10 * DEG), full);
     TEST_ASSERT_DOUBLE_WITHIN(2e-4, 0.5 * full, corr_at(0.75));
     TEST_ASSERT_DOUBLE_WITHIN(2e-4, 0.5 * full, corr_at(1.25));
     TEST_ASSERT_DOUBLE_WITHIN(2e-4, 0.1 * full, corr_at(1.45));
