@@ -145,7 +145,8 @@ int ht_dcm_init(ht_dcm_t *d, const ht_dcm_params_t *p, ht_dcm_param_id_t *bad)
     /* the latency in samples, rounded: <= 500 */
     c.gps_latency_samples = (uint16_t)((((uint32_t)p->gps_latency_ms * rate) + 500u) / 1000u);
     /* dt / tau, rounded: 2^30 / (rate * tau) >= 1073 at 1 kHz */
-    c.wind_alpha_q30 = (int32_t)((dt_r + (HT_DCM_WIND_TAU_S / 2u)) / HT_DCM_WIND_TAU_S);
+    const uint32_t wind_alpha = (dt_r + (HT_DCM_WIND_TAU_S / 2u)) / HT_DCM_WIND_TAU_S;
+    c.wind_alpha_q30 = (int32_t)wind_alpha;
     c.ready = 1u;
     *d = c;
     return 0;

@@ -66,8 +66,10 @@ static int32_t quotient_q28(int32_t num, int32_t den)
  */
 static int solve_a(int32_t num_re, int32_t num_im, int32_t den, int32_t a_q28[2])
 {
+    /* den > 0: its bits above DEN_MAX's counted on the unsigned value */
     unsigned shift = 0u;
-    while ((den >> shift) > DEN_MAX) {
+    const uint32_t den_u = (uint32_t)den;
+    while ((den_u >> shift) > (uint32_t)DEN_MAX) {
         shift++;
     }
     const int32_t dn = qi_rshift_round(den, shift);
