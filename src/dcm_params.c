@@ -30,7 +30,7 @@ const ht_param_info_t *ht_dcm_param_info(ht_dcm_param_id_t id)
 
 /* One row's default (params.def), folded to an integer constant. */
 #define SET_DEFAULT(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
-    p->field = HT_PARAM_RAW(fmt, def);
+    p->field = HT_PARAM_RAW_##fmt(def);
 
 void ht_dcm_params_default(ht_dcm_params_t *p)
 {
@@ -47,7 +47,7 @@ static int in_range(int32_t v, int32_t lo, int32_t hi)
 
 /* One row's range check (params.def). */
 #define RANGE_CHECK(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
-    if (!in_range(p->field, HT_PARAM_RAW(fmt, lo), HT_PARAM_RAW(fmt, hi))) {                       \
+    if (!in_range(p->field, HT_PARAM_RAW_##fmt(lo), HT_PARAM_RAW_##fmt(hi))) {                     \
         return HT_DCM_P_##id;                                                                      \
     }
 

@@ -44,7 +44,7 @@ static int in_range(int32_t v, int32_t lo, int32_t hi)
 
 /* One row's range check (params.def): the bounds fold to integer constants. */
 #define RANGE_CHECK(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
-    if (!in_range(p->field, HT_PARAM_RAW(fmt, lo), HT_PARAM_RAW(fmt, hi))) {                       \
+    if (!in_range(p->field, HT_PARAM_RAW_##fmt(lo), HT_PARAM_RAW_##fmt(hi))) {                     \
         return HT_P_##id;                                                                          \
     }
 

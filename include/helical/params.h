@@ -3,7 +3,7 @@
  * storage formats and the macros that turn one row into a struct field, an
  * id, a name, a default or a range check. docs/parameters.md.
  *
- * Floating point appears only inside HT_PARAM_RAW, on constants: every use
+ * Floating point appears only inside HT_PARAM_RAW_*, on constants: every use
  * folds to an integer constant at compile time (the cortex-m0 build checks
  * that no float routine reaches the object code, boards/common).
  */
@@ -49,16 +49,23 @@
 #define HT_PFMT_NAME_U16  "uint16"
 
 /* An engineering value as the field stores it, rounded half away from zero
- * (as Q16_FROM_REAL). Only for the table's constants. */
-#define HT_PARAM_RAW(fmt, v)                                                                       \
-    ((HT_PFMT_TYPE_##fmt)(((v)*HT_PFMT_SCALE_##fmt) + (((v) >= 0) ? 0.5 : -0.5)))
+ * (as Q16_FROM_REAL). Only for the table's constants. One macro per format,
+ * so that an expander pastes the format token at once (HT_PARAM_RAW_##fmt):
+ * a token passed on unpasted would be macro-expanded first, and a user's
+ * "#define Q16 65536.0" would then break the expansion. */
+#define HT_PARAM_RAW_(type, scale, v) ((type)(((v) * (scale)) + (((v) >= 0) ? 0.5 : -0.5)))
+#define HT_PARAM_RAW_Q16(v)           HT_PARAM_RAW_(q16_t, 65536.0, v)
+#define HT_PARAM_RAW_CM32(v)          HT_PARAM_RAW_(int32_t, 100.0, v)
+#define HT_PARAM_RAW_CM16(v)          HT_PARAM_RAW_(int16_t, 100.0, v)
+#define HT_PARAM_RAW_U8(v)            HT_PARAM_RAW_(uint8_t, 1.0, v)
+#define HT_PARAM_RAW_U16(v)           HT_PARAM_RAW_(uint16_t, 1.0, v)
 
 /* --- row expanders (X of HT_PARAMS_LAW / HT_PARAMS_DCM) ------------------- */
 
 /* a struct field */
 #define HT_PARAM_X_FIELD(id, name, field, unit, fmt, lo, hi, def, desc) HT_PFMT_TYPE_##fmt field;
 /* an initializer element: the default */
-#define HT_PARAM_X_DEFAULT(id, name, field, unit, fmt, lo, hi, def, desc) HT_PARAM_RAW(fmt, def),
+#define HT_PARAM_X_DEFAULT(id, name, field, unit, fmt, lo, hi, def, desc) HT_PARAM_RAW_##fmt(def),
 /* the name, as a string */
 #define HT_PARAM_X_NAME(id, name, field, unit, fmt, lo, hi, def, desc) #name,
 /* one per row: the count */
@@ -72,9 +79,9 @@
      unit,                                                                                         \
      HT_PFMT_NAME_##fmt,                                                                           \
      desc,                                                                                         \
-     HT_PARAM_RAW(fmt, lo),                                                                        \
-     HT_PARAM_RAW(fmt, hi),                                                                        \
-     HT_PARAM_RAW(fmt, def),                                                                       \
+     HT_PARAM_RAW_##fmt(lo),                                                                       \
+     HT_PARAM_RAW_##fmt(hi),                                                                       \
+     HT_PARAM_RAW_##fmt(def),                                                                      \
      HT_PFMT_ISCALE_##fmt,                                                                         \
      HT_PFMT_BYTES_##fmt},
 
