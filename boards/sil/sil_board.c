@@ -276,11 +276,12 @@ static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, si
 
 const ht_param_info_t *sil_param_info(int group, int index)
 {
+    const int id = index + 1;
     if (group == 0) {
-        return ht_param_info((ht_param_id_t)(index + 1));
+        return ht_param_info((ht_param_id_t)id);
     }
     if (group == 1) {
-        return ht_dcm_param_info((ht_dcm_param_id_t)(index + 1));
+        return ht_dcm_param_info((ht_dcm_param_id_t)id);
     }
     return NULL;
 }
@@ -376,9 +377,13 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (cfg->control_rate_hz < 1 || cfg->control_rate_hz > 1000) {
         return fail(err, err_len, "control_rate_hz");
     }
-    const double imu_hz = cfg->estimator[HT_DCM_P_IMU_RATE - 1];
-    const int32_t imu_rate_hz = (int32_t)to_fixed(imu_hz, 1.0, 0, 100000);
-    if ((double)imu_rate_hz != imu_hz || imu_rate_hz < cfg->control_rate_hz || imu_rate_hz > 1000 ||
+    const int imu_row = (int)HT_DCM_P_IMU_RATE - 1;
+    const double imu_hz = cfg->estimator[imu_row];
+    if (!in_range(imu_hz, 1.0, 1000.0) || imu_hz != floor(imu_hz)) {
+        return fail(err, err_len, "imu_rate_hz");
+    }
+    const int32_t imu_rate_hz = (int32_t)imu_hz;
+    if (imu_rate_hz < cfg->control_rate_hz || imu_rate_hz > 1000 ||
         imu_rate_hz % cfg->control_rate_hz != 0 ||
         imu_rate_hz / cfg->control_rate_hz > SIL_IMU_MAX) {
         return fail(err, err_len, "imu_rate_hz");

@@ -69,9 +69,11 @@
 /* the name, as a string */
 #define HT_PARAM_X_NAME(id, name, field, unit, fmt, lo, hi, def, desc) #name,
 /* one per row: the count */
-#define HT_PARAM_X_ONE(id, name, field, unit, fmt, lo, hi, def, desc) +1
+#define HT_PARAM_X_ONE(id, name, field, unit, fmt, lo, hi, def, desc) +1 /* NOLINT: a sum's term   \
+                                                                          */
 /* the bytes a row takes on the HIL link */
-#define HT_PARAM_X_BYTES(id, name, field, unit, fmt, lo, hi, def, desc) +HT_PFMT_BYTES_##fmt
+#define HT_PARAM_X_BYTES(id, name, field, unit, fmt, lo, hi, def, desc)                            \
+    +HT_PFMT_BYTES_##fmt /* NOLINT(bugprone-macro-parentheses): a sum's term */
 
 /* an ht_param_info_t initializer */
 #define HT_PARAM_X_INFO(id, name, field, unit, fmt, lo, hi, def, desc)                             \
