@@ -69,18 +69,31 @@
 /* the name, as a string */
 #define HT_PARAM_X_NAME(id, name, field, unit, fmt, lo, hi, def, desc) #name,
 /* one per row: the count */
-#define HT_PARAM_X_ONE(id, name, field, unit, fmt, lo, hi, def, desc) +1 /* NOLINT: a sum's term   \
-                                                                          */
+#define HT_PARAM_X_ONE(id, name, field, unit, fmt, lo, hi, def, desc)                              \
+    +1 /* NOLINT: a sum's term                                                                     \
+        */
 /* the bytes a row takes on the HIL link */
 #define HT_PARAM_X_BYTES(id, name, field, unit, fmt, lo, hi, def, desc)                            \
     +HT_PFMT_BYTES_##fmt /* NOLINT(bugprone-macro-parentheses): a sum's term */
+
+/* The descriptions cost about 1.5 KB of flash: a target build leaves them out
+ * ("") unless HT_PARAM_DESCRIPTIONS=1; the host build defines it
+ * (src/CMakeLists.txt) for ht_replay, the SIL and the tests. */
+#ifndef HT_PARAM_DESCRIPTIONS
+#define HT_PARAM_DESCRIPTIONS 0
+#endif
+#if HT_PARAM_DESCRIPTIONS
+#define HT_PARAM_DESC_(d) d
+#else
+#define HT_PARAM_DESC_(d) ""
+#endif
 
 /* an ht_param_info_t initializer */
 #define HT_PARAM_X_INFO(id, name, field, unit, fmt, lo, hi, def, desc)                             \
     {#name,                                                                                        \
      unit,                                                                                         \
      HT_PFMT_NAME_##fmt,                                                                           \
-     desc,                                                                                         \
+     HT_PARAM_DESC_(desc),                                                                         \
      HT_PARAM_RAW_##fmt(lo),                                                                       \
      HT_PARAM_RAW_##fmt(hi),                                                                       \
      HT_PARAM_RAW_##fmt(def),                                                                      \
