@@ -102,22 +102,70 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
 
 /* --- configuration --------------------------------------------------------- */
 
+/* --- CFG_LAW and CFG_EST: the parameter table's rows in order ------------ */
+
+/* One field of a table format on the wire (little-endian). */
+#define GET_Q16(p)     hil_get_i32(p)
+#define GET_CM32(p)    hil_get_i32(p)
+#define GET_CM16(p)    hil_get_i16(p)
+#define GET_U8(p)      (*(p))
+#define GET_U16(p)     hil_get_u16(p)
+#define PUT_Q16(p, v)  hil_put_i32((p), (v))
+#define PUT_CM32(p, v) hil_put_i32((p), (v))
+#define PUT_CM16(p, v) hil_put_i16((p), (v))
+#define PUT_U8(p, v)   (*(p) = (v))
+#define PUT_U16(p, v)  hil_put_u16((p), (v))
+
+#define ROW_GET(id, name, field, unit, fmt, lo, hi, def, desc)                                     \
+    s->field = GET_##fmt(&p[off]);                                                                 \
+    off += HT_PFMT_BYTES_##fmt;
+#define ROW_PUT(id, name, field, unit, fmt, lo, hi, def, desc)                                     \
+    PUT_##fmt(&p[off], s->field);                                                                  \
+    off += HT_PFMT_BYTES_##fmt;
+
+_Static_assert(HIL_LEN_CFG_LAW <= HIL_PAYLOAD_MAX,
+               "the law's rows no longer fit one CFG_LAW frame: split it (docs/parameters.md)");
+_Static_assert(HIL_LEN_CFG_EST <= HIL_PAYLOAD_MAX,
+               "the estimator's rows no longer fit one CFG_EST frame: split it");
+
+void hil_cfg_law_write(uint8_t *p, const ht_params_t *s)
+{
+    unsigned off = 0u;
+    HT_PARAMS_LAW(ROW_PUT)
+    (void)off;
+}
+
+void hil_cfg_law_parse(const uint8_t *p, ht_params_t *s)
+{
+    unsigned off = 0u;
+    HT_PARAMS_LAW(ROW_GET)
+    (void)off;
+}
+
+/* The estimator and the IMU timing, as the SIL host board sets them (the
+ * divider is given, not derived: fw_init checks that it agrees with the
+ * rates). */
+void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
+{
+    const ht_dcm_params_t *s = &c->dcm;
+    unsigned off = 0u;
+    HT_PARAMS_DCM(ROW_PUT)
+    hil_put_u16(&p[off], c->control_divider);
+    hil_put_u16(&p[off + 2u], c->imu_timeout_samples);
+}
+
+void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c)
+{
+    ht_dcm_params_t *s = &c->dcm;
+    unsigned off = 0u;
+    HT_PARAMS_DCM(ROW_GET)
+    c->control_divider = hil_get_u16(&p[off]);
+    c->imu_timeout_samples = hil_get_u16(&p[off + 2u]);
+}
+
 static void cfg_law(hil_fw_t *h, const uint8_t *p)
 {
-    ht_params_t *l = &h->cfg.law;
-    l->kp_aileron = hil_get_i32(&p[0]);
-    l->kp_elevator = hil_get_i32(&p[4]);
-    l->kp_rudder = hil_get_i32(&p[8]);
-    l->kff_aileron = hil_get_i32(&p[12]);
-    l->kff_elevator = hil_get_i32(&p[16]);
-    l->kff_rudder = hil_get_i32(&p[20]);
-    l->kd_aileron = hil_get_i32(&p[24]);
-    l->kd_elevator = hil_get_i32(&p[28]);
-    l->kd_rudder = hil_get_i32(&p[32]);
-    l->v_ref_cm_s = hil_get_i32(&p[36]);
-    l->v_min_cm_s = hil_get_i32(&p[40]);
-    l->max_tilt = hil_get_i32(&p[44]);
-    l->schedule = (p[48] != 0u) ? 1u : 0u;
+    hil_cfg_law_parse(p, &h->cfg.law);
     h->have |= HAVE_LAW;
 }
 
@@ -178,47 +226,10 @@ static void cfg_out(hil_fw_t *h, const uint8_t *p)
     h->have |= HAVE_OUT;
 }
 
-/* The estimator and the IMU timing, as the SIL host board sets them (the
- * divider is given, not derived: fw_init checks that it agrees with the
- * rates). */
 static void cfg_est(hil_fw_t *h, const uint8_t *p)
 {
-    fw_config_t *c = &h->cfg;
-    ht_dcm_params_t *d = &c->dcm;
-    d->imu_rate_hz = hil_get_u16(&p[0]);
-    c->control_divider = hil_get_u16(&p[2]);
-    c->imu_timeout_samples = hil_get_u16(&p[4]);
-    d->kp_rollpitch = hil_get_i32(&p[6]);
-    d->ki_rollpitch = hil_get_i32(&p[10]);
-    d->kp_yaw = hil_get_i32(&p[14]);
-    d->ki_yaw = hil_get_i32(&p[18]);
-    d->gyro_bias_max_rad_s = hil_get_i32(&p[22]);
-    d->gyro_limit_rad_s = hil_get_i32(&p[26]);
-    d->accel_limit_g = hil_get_i32(&p[30]);
-    d->accel_band_g = hil_get_i32(&p[34]);
-    d->gps_min_speed_cm_s = hil_get_i16(&p[38]);
-    d->centripetal = p[40];
-    d->gps_latency_ms = hil_get_u16(&p[41]);
+    hil_cfg_est_parse(p, &h->cfg);
     h->have |= HAVE_EST;
-}
-
-void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
-{
-    const ht_dcm_params_t *d = &c->dcm;
-    hil_put_u16(&p[0], d->imu_rate_hz);
-    hil_put_u16(&p[2], c->control_divider);
-    hil_put_u16(&p[4], c->imu_timeout_samples);
-    hil_put_i32(&p[6], d->kp_rollpitch);
-    hil_put_i32(&p[10], d->ki_rollpitch);
-    hil_put_i32(&p[14], d->kp_yaw);
-    hil_put_i32(&p[18], d->ki_yaw);
-    hil_put_i32(&p[22], d->gyro_bias_max_rad_s);
-    hil_put_i32(&p[26], d->gyro_limit_rad_s);
-    hil_put_i32(&p[30], d->accel_limit_g);
-    hil_put_i32(&p[34], d->accel_band_g);
-    hil_put_i16(&p[38], d->gps_min_speed_cm_s);
-    p[40] = d->centripetal;
-    hil_put_u16(&p[41], d->gps_latency_ms);
 }
 
 /* The ACK of a refused START: which block, which field. */

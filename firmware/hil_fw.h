@@ -30,7 +30,8 @@
 #include "helical/hil_frame.h"
 
 #define HIL_PROTOCOL_VERSION                                                                       \
-    4u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms */
+    5u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
+          5: CFG_LAW and CFG_EST laid out by the parameter table */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -52,12 +53,15 @@
 #define HIL_ID_OUTPUT 0xA0u
 #define HIL_ID_STATE  0xA1u /* sent just before each OUTPUT */
 
-/* Payload lengths */
-#define HIL_LEN_CFG_LAW 49u
+/* Payload lengths. CFG_LAW is the law's rows of the parameter table
+ * (include/helical/params.def) in its order, each as wide as its format;
+ * CFG_EST the estimator's rows, then u16 control_divider and u16
+ * imu_timeout_samples. A new row lengthens its frame by itself. */
+#define HIL_LEN_CFG_LAW ((uint8_t)(0u HT_PARAMS_LAW(HT_PARAM_X_BYTES)))
+#define HIL_LEN_CFG_EST ((uint8_t)(0u HT_PARAMS_DCM(HT_PARAM_X_BYTES) + 4u))
 #define HIL_LEN_CFG_ALT 52u
 #define HIL_LEN_CFG_SPD 22u
 #define HIL_LEN_CFG_OUT 58u
-#define HIL_LEN_CFG_EST 43u
 #define HIL_LEN_SENSORS 28u
 #define HIL_LEN_STEP    52u
 #define HIL_LEN_TRUTH   42u
@@ -187,7 +191,11 @@ void hil_imu_write(uint8_t *p, const ht_imu_sample_t *s);
 void hil_imu_parse(const uint8_t *p, ht_imu_sample_t *s);
 void hil_state_write(uint8_t *p, const hil_state_t *s);
 void hil_state_parse(const uint8_t *p, hil_state_t *s);
+/* CFG_LAW from / into the law's parameters (the table's order and widths) */
+void hil_cfg_law_write(uint8_t *p, const ht_params_t *l);
+void hil_cfg_law_parse(const uint8_t *p, ht_params_t *l);
 /* CFG_EST from / into a configuration (dcm, control_divider, imu_timeout_samples) */
 void hil_cfg_est_write(uint8_t *p, const fw_config_t *c);
+void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c);
 
 #endif /* HT_HIL_FW_H */

@@ -7,19 +7,10 @@
 
 #include "helical/dcm.h"
 
-static const char *const dcm_param_names[HT_DCM_P_COUNT] = {"",
-                                                            "imu_rate_hz",
-                                                            "kp_rollpitch",
-                                                            "ki_rollpitch",
-                                                            "kp_yaw",
-                                                            "ki_yaw",
-                                                            "gyro_bias_max",
-                                                            "gyro_limit",
-                                                            "accel_limit",
-                                                            "accel_band",
-                                                            "gps_min_speed",
-                                                            "centripetal",
-                                                            "gps_latency"};
+static const char *const dcm_param_names[HT_DCM_P_COUNT] = {"", HT_PARAMS_DCM(HT_PARAM_X_NAME)};
+
+// cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
+static const ht_param_info_t dcm_param_info[HT_PARAM_DCM_COUNT] = {HT_PARAMS_DCM(HT_PARAM_X_INFO)};
 
 const char *ht_dcm_param_name(ht_dcm_param_id_t id)
 {
@@ -29,70 +20,44 @@ const char *ht_dcm_param_name(ht_dcm_param_id_t id)
     return dcm_param_names[id];
 }
 
+const ht_param_info_t *ht_dcm_param_info(ht_dcm_param_id_t id)
+{
+    if ((int)id <= 0 || (int)id >= (int)HT_DCM_P_COUNT) {
+        return NULL;
+    }
+    const int i = (int)id - 1;
+    return &dcm_param_info[i];
+}
+
+/* One row's default (params.def), folded to an integer constant. */
+#define SET_DEFAULT(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    p->field = HT_PARAM_RAW_##fmt(def);
+
 void ht_dcm_params_default(ht_dcm_params_t *p)
 {
     if (p == NULL) {
         return;
     }
-    p->imu_rate_hz = 200u;
-    /* Q16 of 0.4, 0.04, 0.5, 0.02, 0.1 and 34.9 (2000 deg/s), rounded */
-    p->kp_rollpitch = 26214;
-    p->ki_rollpitch = 2621;
-    p->kp_yaw = 32768;
-    p->ki_yaw = 1311;
-    p->gyro_bias_max_rad_s = 6554;
-    p->gyro_limit_rad_s = 2287206;
-    p->accel_limit_g = 16 * Q16_ONE;
-    p->accel_band_g = Q16_ONE / 2;
-    p->gps_min_speed_cm_s = 300;
-    p->centripetal = (uint8_t)HT_DCM_CF_AUTO;
-    p->gps_latency_ms = 100u;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
+    HT_PARAMS_DCM(SET_DEFAULT)
 }
 
-static int in_range(q16_t v, q16_t lo, q16_t hi)
+static int in_range(int32_t v, int32_t lo, int32_t hi)
 {
     return (v >= lo) && (v <= hi);
 }
 
-/* The first parameter out of its documented range, or HT_DCM_P_NONE. */
+/* One row's range check (params.def). */
+#define RANGE_CHECK(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    if (!in_range(p->field, HT_PARAM_RAW_##fmt(lo), HT_PARAM_RAW_##fmt(hi))) {                     \
+        return HT_DCM_P_##id;                                                                      \
+    }
+
+/* The first parameter out of its range (table order), or HT_DCM_P_NONE. */
 static ht_dcm_param_id_t first_bad(const ht_dcm_params_t *p)
 {
-    if (p->imu_rate_hz < 50u || p->imu_rate_hz > 1000u) {
-        return HT_DCM_P_IMU_RATE;
-    }
-    if (!in_range(p->kp_rollpitch, 0, 16 * Q16_ONE)) {
-        return HT_DCM_P_KP_ROLLPITCH;
-    }
-    if (!in_range(p->ki_rollpitch, 0, 4 * Q16_ONE)) {
-        return HT_DCM_P_KI_ROLLPITCH;
-    }
-    if (!in_range(p->kp_yaw, 0, 16 * Q16_ONE)) {
-        return HT_DCM_P_KP_YAW;
-    }
-    if (!in_range(p->ki_yaw, 0, 4 * Q16_ONE)) {
-        return HT_DCM_P_KI_YAW;
-    }
-    if (!in_range(p->gyro_bias_max_rad_s, 0, Q16_ONE)) {
-        return HT_DCM_P_BIAS_MAX;
-    }
-    if (!in_range(p->gyro_limit_rad_s, Q16_ONE, 64 * Q16_ONE)) {
-        return HT_DCM_P_GYRO_LIMIT;
-    }
-    if (!in_range(p->accel_limit_g, Q16_ONE, 32 * Q16_ONE)) {
-        return HT_DCM_P_ACCEL_LIMIT;
-    }
-    if (!in_range(p->accel_band_g, 1, 4 * Q16_ONE)) {
-        return HT_DCM_P_ACCEL_BAND;
-    }
-    if (p->gps_min_speed_cm_s < 0 || p->gps_min_speed_cm_s > 10000) {
-        return HT_DCM_P_GPS_MIN_SPEED;
-    }
-    if (p->centripetal > (uint8_t)HT_DCM_CF_AUTO) {
-        return HT_DCM_P_CENTRIPETAL;
-    }
-    if (p->gps_latency_ms > 500u) {
-        return HT_DCM_P_GPS_LATENCY;
-    }
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
+    HT_PARAMS_DCM(RANGE_CHECK)
     return HT_DCM_P_NONE;
 }
 

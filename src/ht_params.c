@@ -6,7 +6,8 @@
 
 #include "helical/helical_turn.h"
 
-/* The ranges are public (helical_turn.h). Why they are what they are:
+/* The per-field ranges are the table's (include/helical/params.def); the
+ * joint limits are checked here. Why they are what they are:
  * gains above 64 per unit error (or per rad/s) would saturate the surfaces on
  * sensor noise alone; a floor below 1 m/s makes v_ref / S meaningless (and
  * unbounded); |ratio| <= 8 is 82.9 degrees of bank, beyond which the law's
@@ -15,10 +16,10 @@
 /* 980.665 (g in cm/s^2) in Q20: max_tilt (Q16) * g -> Q18 of (rad/s)*(cm/s). */
 #define HT_G_CM_S2_Q20 1028301783L
 
-static const char *const param_names[HT_P_COUNT] = {
-    "",           "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator",
-    "kff_rudder", "kd_aileron", "kd_elevator", "kd_rudder", "v_ref",       "v_min",
-    "schedule",   "max_tilt",   "pitch_mode"};
+static const char *const param_names[HT_P_COUNT] = {"", HT_PARAMS_LAW(HT_PARAM_X_NAME)};
+
+// cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
+static const ht_param_info_t param_info[HT_PARAM_LAW_COUNT] = {HT_PARAMS_LAW(HT_PARAM_X_INFO)};
 
 const char *ht_param_name(ht_param_id_t id)
 {
@@ -28,9 +29,32 @@ const char *ht_param_name(ht_param_id_t id)
     return param_names[id];
 }
 
-static int gain_ok(q16_t g)
+const ht_param_info_t *ht_param_info(ht_param_id_t id)
 {
-    return g >= 0 && g <= HT_GAIN_MAX_Q16;
+    if ((int)id <= 0 || (int)id >= (int)HT_P_COUNT) {
+        return NULL;
+    }
+    const int i = (int)id - 1;
+    return &param_info[i];
+}
+
+static int in_range(int32_t v, int32_t lo, int32_t hi)
+{
+    return (v >= lo) && (v <= hi);
+}
+
+/* One row's range check (params.def): the bounds fold to integer constants. */
+#define RANGE_CHECK(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    if (!in_range(p->field, HT_PARAM_RAW_##fmt(lo), HT_PARAM_RAW_##fmt(hi))) {                     \
+        return HT_P_##id;                                                                          \
+    }
+
+/* The first field outside its own range (table order), or HT_P_NONE. */
+static ht_param_id_t first_bad_field(const ht_params_t *p)
+{
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
+    HT_PARAMS_LAW(RANGE_CHECK)
+    return HT_P_NONE;
 }
 
 /* The rate gain of one axis, kff * v_ref / v_min + kd * s_p,max, at most
@@ -50,44 +74,27 @@ static int rate_gain_ok(q16_t kff, q16_t kd, const ht_params_t *p)
     return (hi < lim) || (hi == lim && (lo & 2047u) == 0u);
 }
 
-/* The nine gains in ht_params_t's (and ht_param_id_t's) order: kp, kff, kd,
- * each aileron, elevator, rudder. */
-#define N_GAINS 9
-
-/* The first parameter out of range, or HT_P_NONE. */
-static ht_param_id_t first_bad_param(const ht_params_t *p, const q16_t gains[N_GAINS])
+/* The first parameter out of range, or HT_P_NONE: each field in its own
+ * range first (params.def), then the joint limits the table cannot state. */
+static ht_param_id_t first_bad_param(const ht_params_t *p)
 {
-    for (int i = 0; i < N_GAINS; i++) {
-        if (!gain_ok(gains[i])) {
-            const int id = (int)HT_P_KP_AILERON + i;
-            return (ht_param_id_t)id;
-        }
+    const ht_param_id_t bad = first_bad_field(p);
+    if (bad != HT_P_NONE) {
+        return bad;
     }
-    if (p->v_min_cm_s < HT_V_MIN_LOWEST_CM_S || p->v_min_cm_s > HT_V_REF_MAX_CM_S) {
-        return HT_P_V_MIN;
-    }
-    if (p->v_ref_cm_s < p->v_min_cm_s || p->v_ref_cm_s > HT_V_REF_MAX_CM_S ||
-        p->v_ref_cm_s > HT_SCALE_MAX * p->v_min_cm_s) {
+    if (p->v_ref_cm_s < p->v_min_cm_s || p->v_ref_cm_s > HT_SCALE_MAX * p->v_min_cm_s) {
         return HT_P_V_REF;
-    }
-    if (p->schedule > 1u) {
-        return HT_P_SCHEDULE;
     }
     /* A rate gain too large for the law to be exact: the axis' kff names it
      * when kff alone exceeds the limit, else its kd. */
+    const q16_t kff[3] = {p->kff_aileron, p->kff_elevator, p->kff_rudder};
+    const q16_t kd[3] = {p->kd_aileron, p->kd_elevator, p->kd_rudder};
+    static const ht_param_id_t kff_id[3] = {HT_P_KFF_AILERON, HT_P_KFF_ELEVATOR, HT_P_KFF_RUDDER};
+    static const ht_param_id_t kd_id[3] = {HT_P_KD_AILERON, HT_P_KD_ELEVATOR, HT_P_KD_RUDDER};
     for (int i = 0; i < 3; i++) {
-        if (!rate_gain_ok(gains[3 + i], gains[6 + i], p)) {
-            const int kd_named = rate_gain_ok(gains[3 + i], 0, p);
-            const int id = (int)HT_P_KFF_AILERON + i + (3 * kd_named);
-            return (ht_param_id_t)id;
+        if (!rate_gain_ok(kff[i], kd[i], p)) {
+            return (rate_gain_ok(kff[i], 0, p) != 0) ? kd_id[i] : kff_id[i];
         }
-    }
-    if (p->max_tilt <= 0 || p->max_tilt > HT_MAX_TILT_LIMIT_Q16) {
-        return HT_P_MAX_TILT;
-    }
-    if (p->pitch_mode != (uint8_t)HT_PITCH_EARTH_FRAME &&
-        p->pitch_mode != (uint8_t)HT_PITCH_TILT_CROSS) {
-        return HT_P_PITCH_MODE;
     }
     return HT_P_NONE;
 }
@@ -102,13 +109,7 @@ ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id
     }
     const ht_controller_t zero = {0};
     *ctl = zero; /* unusable (ready = 0) until every check has passed */
-    /* One copy of the gains, indexed by the checks (a second copy, or a
-     * controller built on the stack and copied, costs flash that the budget
-     * of README "Boards and firmware" counts). */
-    const q16_t gains[N_GAINS] = {params->kp_aileron,  params->kp_elevator,  params->kp_rudder,
-                                  params->kff_aileron, params->kff_elevator, params->kff_rudder,
-                                  params->kd_aileron,  params->kd_elevator,  params->kd_rudder};
-    const ht_param_id_t bad = first_bad_param(params, gains);
+    const ht_param_id_t bad = first_bad_param(params);
     if (bad != HT_P_NONE) {
         if (bad_field != NULL) {
             *bad_field = bad;

@@ -198,44 +198,97 @@ static int modes_params(sil_board_t *b, const sil_config_t *cfg, ht_modes_params
     return 0;
 }
 
-/* The law's parameters: the core checks [0, 64]; refuse values that would
- * not convert. */
+/* --- the parameter table (include/helical/params.def) ------------------ */
+
+/* A row's value in the table's unit, refused with the row's bounds unless
+ * finite and within them; otherwise its stored integer (llround of value *
+ * scale, which the bounds keep inside the field's type). */
+static int table_value(double v, const ht_param_info_t *info, const char *prefix, int64_t *raw,
+                       char *err, size_t err_len)
+{
+    const double scale = (double)info->scale;
+    const double lo = (double)info->min_raw / scale;
+    const double hi = (double)info->max_raw / scale;
+    if (!in_range(v, lo, hi)) {
+        if (err != NULL && err_len > 0u) {
+            (void)snprintf(err, err_len, "%s%s = %.9g is outside [%.9g, %.9g] (%s, %s)", prefix,
+                           info->name, v, lo, hi, info->unit, info->format);
+        }
+        return 1;
+    }
+    if (info->scale == 1 && v != floor(v)) { /* an integer field (U8, U16) */
+        if (err != NULL && err_len > 0u) {
+            (void)snprintf(err, err_len, "%s%s = %.9g is not a whole number (%s, %s)", prefix,
+                           info->name, v, info->unit, info->format);
+        }
+        return 1;
+    }
+    *raw = to_fixed(v, scale, info->min_raw, info->max_raw);
+    return 0;
+}
+
+#define SIL_SET_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                               \
+    case HT_P_##id:                                                                                \
+        p->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
+        break;
+
+/* The law's parameters (sil_config_t law[], the table's units and order). */
 static int law_params(const sil_config_t *cfg, ht_params_t *p, char *err, size_t err_len)
 {
-    const double gains[9] = {cfg->kp_aileron,  cfg->kp_elevator,  cfg->kp_rudder,
-                             cfg->kff_aileron, cfg->kff_elevator, cfg->kff_rudder,
-                             cfg->kd_aileron,  cfg->kd_elevator,  cfg->kd_rudder};
-    static const char *const gain_names[9] = {"kp_aileron",  "kp_elevator",  "kp_rudder",
-                                              "kff_aileron", "kff_elevator", "kff_rudder",
-                                              "kd_aileron",  "kd_elevator",  "kd_rudder"};
-    for (int i = 0; i < 9; ++i) {
-        if (!in_range(gains[i], 0.0, 64.0)) {
-            return fail(err, err_len, gain_names[i]);
+    for (int i = 1; i < (int)HT_P_COUNT; ++i) {
+        const ht_param_id_t id = (ht_param_id_t)i;
+        int64_t raw = 0;
+        if (table_value(cfg->law[i - 1], ht_param_info(id), "", &raw, err, err_len) != 0) {
+            return 1;
+        }
+        switch (id) {
+            HT_PARAMS_LAW(SIL_SET_FIELD)
+        default:
+            break;
         }
     }
-    if (!in_range(cfg->v_ref_m_s, 1.0, 327.0)) {
-        return fail(err, err_len, "v_ref");
-    }
-    if (!in_range(cfg->v_min_m_s, 1.0, 327.0)) {
-        return fail(err, err_len, "v_min");
-    }
-    if (!in_range(cfg->max_tilt, 0.0, 8.0)) {
-        return fail(err, err_len, "max_tilt");
-    }
-    p->kp_aileron = to_q16(cfg->kp_aileron);
-    p->kp_elevator = to_q16(cfg->kp_elevator);
-    p->kp_rudder = to_q16(cfg->kp_rudder);
-    p->kff_aileron = to_q16(cfg->kff_aileron);
-    p->kff_elevator = to_q16(cfg->kff_elevator);
-    p->kff_rudder = to_q16(cfg->kff_rudder);
-    p->kd_aileron = to_q16(cfg->kd_aileron);
-    p->kd_elevator = to_q16(cfg->kd_elevator);
-    p->kd_rudder = to_q16(cfg->kd_rudder);
-    p->v_ref_cm_s = to_cm32(cfg->v_ref_m_s);
-    p->v_min_cm_s = to_cm32(cfg->v_min_m_s);
-    p->schedule = (cfg->schedule != 0) ? 1u : 0u;
-    p->max_tilt = to_q16(cfg->max_tilt);
     return 0;
+}
+
+#define SIL_SET_DCM_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                           \
+    case HT_DCM_P_##id:                                                                            \
+        d->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
+        break;
+
+/* The estimator (sil_config_t estimator[], the table's units and order). */
+static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, size_t err_len)
+{
+    for (int i = 1; i < (int)HT_DCM_P_COUNT; ++i) {
+        const ht_dcm_param_id_t id = (ht_dcm_param_id_t)i;
+        int64_t raw = 0;
+        if (table_value(cfg->estimator[i - 1], ht_dcm_param_info(id), "estimator.", &raw, err,
+                        err_len) != 0) {
+            return 1;
+        }
+        switch (id) {
+            HT_PARAMS_DCM(SIL_SET_DCM_FIELD)
+        default:
+            break;
+        }
+    }
+    return 0;
+}
+
+const ht_param_info_t *sil_param_info(int group, int index)
+{
+    const int id = index + 1;
+    if (group == 0) {
+        return ht_param_info((ht_param_id_t)id);
+    }
+    if (group == 1) {
+        return ht_dcm_param_info((ht_dcm_param_id_t)id);
+    }
+    return NULL;
+}
+
+int sil_param_count(int group)
+{
+    return (group == 0) ? HT_PARAM_LAW_COUNT : ((group == 1) ? HT_PARAM_DCM_COUNT : 0);
 }
 
 /* The holds (holds.h), checked here so that a refusal names the hold. */
@@ -282,41 +335,6 @@ static int hold_params(const sil_config_t *cfg, fw_config_t *fc, char *err, size
     return 0;
 }
 
-/* The estimator (dcm.h), from degrees and metres. */
-static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, size_t err_len)
-{
-    const double vals[] = {
-        cfg->dcm_kp_rollpitch,  cfg->dcm_ki_rollpitch,        cfg->dcm_kp_yaw,
-        cfg->dcm_ki_yaw,        cfg->dcm_gyro_bias_max_deg_s, cfg->dcm_gyro_limit_deg_s,
-        cfg->dcm_accel_limit_g, cfg->dcm_accel_band_g,        cfg->dcm_gps_min_speed_m_s};
-    static const char *const names[] = {
-        "estimator.kp_rollpitch",  "estimator.ki_rollpitch",        "estimator.kp_yaw",
-        "estimator.ki_yaw",        "estimator.gyro_bias_max_deg_s", "estimator.gyro_limit_deg_s",
-        "estimator.accel_limit_g", "estimator.accel_band_g",        "estimator.gps_min_speed_m_s"};
-    for (size_t i = 0; i < sizeof vals / sizeof vals[0]; ++i) {
-        if (!in_range(vals[i], 0.0, 10000.0)) {
-            return fail(err, err_len, names[i]);
-        }
-    }
-    const double rad = 3.14159265358979323846 / 180.0;
-    d->imu_rate_hz = (uint16_t)to_fixed(cfg->imu_rate_hz, 1.0, 0, UINT16_MAX);
-    d->kp_rollpitch = to_q16(cfg->dcm_kp_rollpitch);
-    d->ki_rollpitch = to_q16(cfg->dcm_ki_rollpitch);
-    d->kp_yaw = to_q16(cfg->dcm_kp_yaw);
-    d->ki_yaw = to_q16(cfg->dcm_ki_yaw);
-    d->gyro_bias_max_rad_s = to_q16(cfg->dcm_gyro_bias_max_deg_s * rad);
-    d->gyro_limit_rad_s = to_q16(cfg->dcm_gyro_limit_deg_s * rad);
-    d->accel_limit_g = to_q16(cfg->dcm_accel_limit_g);
-    d->accel_band_g = to_q16(cfg->dcm_accel_band_g);
-    d->gps_min_speed_cm_s = to_cm16(cfg->dcm_gps_min_speed_m_s);
-    d->centripetal = (uint8_t)to_fixed(cfg->dcm_centripetal, 1.0, 0, 255);
-    if (!in_range(cfg->dcm_gps_latency_s, 0.0, 10.0)) {
-        return fail(err, err_len, "estimator.gps_latency_s");
-    }
-    d->gps_latency_ms = (uint16_t)to_fixed(cfg->dcm_gps_latency_s, 1000.0, 0, UINT16_MAX);
-    return 0;
-}
-
 /* The name of what fw_init refused. */
 static int fw_refused(const fw_t *fw, char *err, size_t err_len)
 {
@@ -359,9 +377,15 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (cfg->control_rate_hz < 1 || cfg->control_rate_hz > 1000) {
         return fail(err, err_len, "control_rate_hz");
     }
-    if (cfg->imu_rate_hz < cfg->control_rate_hz || cfg->imu_rate_hz > 1000 ||
-        cfg->imu_rate_hz % cfg->control_rate_hz != 0 ||
-        cfg->imu_rate_hz / cfg->control_rate_hz > SIL_IMU_MAX) {
+    const int imu_row = (int)HT_DCM_P_IMU_RATE - 1;
+    const double imu_hz = cfg->estimator[imu_row];
+    if (!in_range(imu_hz, 1.0, 1000.0) || imu_hz != floor(imu_hz)) {
+        return fail(err, err_len, "imu_rate_hz");
+    }
+    const int32_t imu_rate_hz = (int32_t)imu_hz;
+    if (imu_rate_hz < cfg->control_rate_hz || imu_rate_hz > 1000 ||
+        imu_rate_hz % cfg->control_rate_hz != 0 ||
+        imu_rate_hz / cfg->control_rate_hz > SIL_IMU_MAX) {
         return fail(err, err_len, "imu_rate_hz");
     }
     int rc = law_params(cfg, &fc->law, err, err_len);
@@ -381,9 +405,9 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
         return rc;
     }
     fc->modes_pitch_mode = (cfg->modes_pitch_mode != 0) ? 1u : 0u;
-    const int32_t divider = cfg->imu_rate_hz / cfg->control_rate_hz;
+    const int32_t divider = imu_rate_hz / cfg->control_rate_hz;
     fc->control_divider = (uint16_t)divider;
-    const int32_t timeout = cfg->imu_rate_hz / 5; /* 0.2 s */
+    const int32_t timeout = imu_rate_hz / 5; /* 0.2 s */
     fc->imu_timeout_samples = (uint16_t)timeout;
 
     const double trims[3] = {cfg->trim_aileron, cfg->trim_elevator, cfg->trim_rudder};

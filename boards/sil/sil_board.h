@@ -31,8 +31,8 @@ extern "C" {
 #endif
 
 #define SIL_BOARD_ABI_VERSION                                                                      \
-    10 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
-          10: dcm_gps_latency_s */
+    11 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+          10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -43,12 +43,15 @@ extern "C" {
 
 /* Everything configurable, in physical units (host doubles). */
 typedef struct {
-    /* the control law, by control-law.md name */
-    double kp_aileron, kp_elevator, kp_rudder;
-    double kff_aileron, kff_elevator, kff_rudder;
-    double kd_aileron, kd_elevator, kd_rudder;
-    double v_ref_m_s, v_min_m_s, max_tilt;
-    int32_t schedule;
+    /* ABI 11: the control law and the estimator, one value per row of the
+     * parameter table (include/helical/params.def), in its order and in its
+     * units (law[HT_P_V_REF - 1] in m/s, estimator[HT_DCM_P_GPS_LATENCY - 1]
+     * in ms, ...). Each must be finite and within the row's bounds; a refusal
+     * quotes them. estimator[HT_DCM_P_IMU_RATE - 1] is the IMU rate, a whole
+     * multiple of control_rate_hz (at most SIL_IMU_MAX samples per step).
+     * sil/helical_sil/params.py reads the same table. */
+    double law[HT_PARAM_LAW_COUNT];
+    double estimator[HT_PARAM_DCM_COUNT];
     /* altitude hold (holds.h) */
     double alt_kp_pitch_per_m, alt_ki_pitch_per_m_s, alt_kd_pitch_per_m_s;
     double alt_max_pitch, alt_max_integral_pitch, alt_max_error_m, alt_integral_band_m;
@@ -85,14 +88,6 @@ typedef struct {
     double waypoints[SIL_MAX_WAYPOINTS][3];
     /* ABI 7: the altitude hold's airspeed protection (holds.h; protect 0 = off) */
     double alt_protect_m_s, alt_protect_valid_m_s, alt_kv_pitch_per_m_s, alt_protect_tau_s;
-    /* ABI 8: the attitude estimator (dcm.h) */
-    int32_t imu_rate_hz; /* = control_rate_hz * the IMU samples per control step */
-    double dcm_kp_rollpitch, dcm_ki_rollpitch, dcm_kp_yaw, dcm_ki_yaw;
-    double dcm_gyro_bias_max_deg_s, dcm_gyro_limit_deg_s, dcm_accel_limit_g, dcm_accel_band_g;
-    double dcm_gps_min_speed_m_s;
-    int32_t dcm_centripetal; /* ht_dcm_cf_t */
-    /* ABI 10: the GPS latency the estimator assumes (dcm.h gps_latency_ms) */
-    double dcm_gps_latency_s;
 } sil_config_t;
 
 /* One control step's measurements (library axes: X left, Y forward, Z down).
@@ -204,9 +199,17 @@ size_t sil_sensors_size(void);
 size_t sil_command_size(void);
 size_t sil_actuators_size(void);
 
+/* The parameter table's rows, for the harness's cross-check
+ * (sil/tests/test_params.py): group 0 the law, 1 the estimator; index from 0
+ * in the table's order. NULL / 0 for anything else. */
+const ht_param_info_t *sil_param_info(int group, int index);
+int sil_param_count(int group);
+
 /*
  * Convert and check the configuration. Returns 0 on success; otherwise a
- * non-zero code and the name of the offending field in err (NUL-terminated).
+ * non-zero code and the name of the offending field in err (NUL-terminated;
+ * for a row of the parameter table, with its value, bounds, unit and format:
+ * "kp_aileron = 65 is outside [0, 64] (per unit error, Q16)").
  */
 int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t err_len);
 

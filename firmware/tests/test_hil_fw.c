@@ -101,18 +101,26 @@ static sil_config_t config(void)
 {
     sil_config_t c;
     memset(&c, 0, sizeof c);
-    c.kp_aileron = 2.0;
-    c.kp_elevator = 6.0;
-    c.kp_rudder = 0.3;
-    c.kff_elevator = 1.0;
-    c.kff_rudder = 0.5;
-    c.kd_aileron = 0.3;
-    c.kd_elevator = 1.0;
-    c.kd_rudder = 1.0;
-    c.v_ref_m_s = 110.0;
-    c.v_min_m_s = 30.0;
-    c.max_tilt = 2.0;
-    c.schedule = 1;
+    for (int i = 1; i < (int)HT_P_COUNT; ++i) { /* the table's defaults first */
+        const ht_param_info_t *info = ht_param_info((ht_param_id_t)i);
+        c.law[i - 1] = (double)info->default_raw / (double)info->scale;
+    }
+    for (int i = 1; i < (int)HT_DCM_P_COUNT; ++i) {
+        const ht_param_info_t *info = ht_dcm_param_info((ht_dcm_param_id_t)i);
+        c.estimator[i - 1] = (double)info->default_raw / (double)info->scale;
+    }
+    c.law[HT_P_KP_AILERON - 1] = 2.0;
+    c.law[HT_P_KP_ELEVATOR - 1] = 6.0;
+    c.law[HT_P_KP_RUDDER - 1] = 0.3;
+    c.law[HT_P_KFF_ELEVATOR - 1] = 1.0;
+    c.law[HT_P_KFF_RUDDER - 1] = 0.5;
+    c.law[HT_P_KD_AILERON - 1] = 0.3;
+    c.law[HT_P_KD_ELEVATOR - 1] = 1.0;
+    c.law[HT_P_KD_RUDDER - 1] = 1.0;
+    c.law[HT_P_V_REF - 1] = 110.0;
+    c.law[HT_P_V_MIN - 1] = 30.0;
+    c.law[HT_P_MAX_TILT - 1] = 2.0;
+    c.law[HT_P_SCHEDULE - 1] = 1.0;
     c.alt_kp_pitch_per_m = 0.012;
     c.alt_ki_pitch_per_m_s = 0.004;
     c.alt_kd_pitch_per_m_s = 0.015;
@@ -139,17 +147,18 @@ static sil_config_t config(void)
     c.trim_elevator = -0.021;
     c.trim_rudder = 0.004;
     c.control_rate_hz = 40;
-    c.imu_rate_hz = 120;
-    c.dcm_kp_rollpitch = 0.2;
-    c.dcm_ki_rollpitch = 0.002;
-    c.dcm_kp_yaw = 0.5;
-    c.dcm_ki_yaw = 0.005;
-    c.dcm_gyro_bias_max_deg_s = 5.7;
-    c.dcm_gyro_limit_deg_s = 2000.0;
-    c.dcm_accel_limit_g = 16.0;
-    c.dcm_accel_band_g = 0.5;
-    c.dcm_gps_min_speed_m_s = 3.0;
-    c.dcm_centripetal = 2;
+    c.estimator[HT_DCM_P_IMU_RATE - 1] = 120.0;
+    c.estimator[HT_DCM_P_KP_ROLLPITCH - 1] = 0.2;
+    c.estimator[HT_DCM_P_KI_ROLLPITCH - 1] = 0.002;
+    c.estimator[HT_DCM_P_KP_YAW - 1] = 0.5;
+    c.estimator[HT_DCM_P_KI_YAW - 1] = 0.005;
+    c.estimator[HT_DCM_P_BIAS_MAX - 1] = 5.7 * 3.14159265358979323846 / 180.0;
+    c.estimator[HT_DCM_P_GYRO_LIMIT - 1] = 2000.0 * 3.14159265358979323846 / 180.0;
+    c.estimator[HT_DCM_P_ACCEL_LIMIT - 1] = 16.0;
+    c.estimator[HT_DCM_P_ACCEL_BAND - 1] = 0.5;
+    c.estimator[HT_DCM_P_GPS_MIN_SPEED - 1] = 3.0;
+    c.estimator[HT_DCM_P_CENTRIPETAL - 1] = 2.0;
+    c.estimator[HT_DCM_P_GPS_LATENCY - 1] = 0.0; /* as before protocol 4 */
     return c;
 }
 
@@ -163,17 +172,20 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
 {
     uint8_t p[HIL_PAYLOAD_MAX];
     memset(p, 0, sizeof p);
-    const double law[9] = {c->kp_aileron,  c->kp_elevator,  c->kp_rudder,
-                           c->kff_aileron, c->kff_elevator, c->kff_rudder,
-                           c->kd_aileron,  c->kd_elevator,  c->kd_rudder};
+    /* protocol 5: the law's rows of the parameter table in order
+     * (docs/hil-protocol.md): nine i32 Q16 gains (0..32), i32 cm/s v_ref (36)
+     * and v_min (40), u8 schedule (44), i32 Q16 max_tilt (45), u8 pitch_mode
+     * (49) */
     for (int i = 0; i < 9; ++i) {
-        put32(&p[4 * i], q16(law[i]));
+        put32(&p[4 * i], q16(c->law[i]));
     }
     put32(&p[0], kp_aileron_q16);
-    put32(&p[36], (int32_t)llround(c->v_ref_m_s * 100.0));
-    put32(&p[40], (int32_t)llround(c->v_min_m_s * 100.0));
-    put32(&p[44], q16(c->max_tilt));
-    p[48] = (uint8_t)c->schedule;
+    put32(&p[36], (int32_t)llround(c->law[HT_P_V_REF - 1] * 100.0));
+    put32(&p[40], (int32_t)llround(c->law[HT_P_V_MIN - 1] * 100.0));
+    p[44] = (uint8_t)llround(c->law[HT_P_SCHEDULE - 1]);
+    put32(&p[45], q16(c->law[HT_P_MAX_TILT - 1]));
+    p[49] = (uint8_t)llround(c->law[HT_P_PITCH_MODE - 1]);
+    TEST_ASSERT_EQUAL_UINT8(50u, HIL_LEN_CFG_LAW);
     push_frame(HIL_ID_CFG_LAW, p, HIL_LEN_CFG_LAW);
 
     put32(&p[0], q16(c->alt_kp_pitch_per_m));
@@ -240,7 +252,7 @@ static void start_both(void)
     sil_config_t c = config();
     char err[64];
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sil_board_init(&sil, &c, err, sizeof err), err);
-    send_config(&c, q16(c.kp_aileron));
+    send_config(&c, q16(c.law[HT_P_KP_AILERON - 1]));
     TEST_ASSERT_EQUAL_INT(0, replies()); /* CFG frames are not answered */
     push_frame(HIL_ID_START, NULL, 0);
     expect_ack(HIL_ACK_OK, HIL_ID_START, 0u);
@@ -787,7 +799,7 @@ static void test_start_checks_the_configuration(void)
 
     /* the estimator's block: a divider that does not give the IMU rate, a
      * timeout of 0, an IMU rate under 50 Hz: refused, naming the field */
-    send_config(&c, q16(c.kp_aileron));
+    send_config(&c, q16(c.law[HT_P_KP_AILERON - 1]));
     fw_config_t est = sil.cfg;
     est.control_divider = 2u;
     hil_cfg_est_write(p, &est);
@@ -809,13 +821,91 @@ static void test_start_checks_the_configuration(void)
     expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST, (uint8_t)HT_DCM_P_IMU_RATE);
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 
-    send_config(&c, q16(c.kp_aileron));
+    send_config(&c, q16(c.law[HT_P_KP_AILERON - 1]));
     push_frame(HIL_ID_START, NULL, 0);
     expect_ack(HIL_ACK_OK, HIL_ID_START, 0u);
     TEST_ASSERT_EQUAL_UINT8(1u, fw.started);
     /* a configuration frame stops the steps until the next START */
-    send_config(&c, q16(c.kp_aileron));
+    send_config(&c, q16(c.law[HT_P_KP_AILERON - 1]));
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
+}
+
+/* CFG_LAW and CFG_EST follow the parameter table (protocol 5,
+ * docs/hil-protocol.md): each field at its documented offset and width, and
+ * the parser gives back every field the writer wrote (a row missing from
+ * either, or a width that disagrees, fails here). */
+static void test_cfg_frames_follow_the_table(void)
+{
+    uint8_t p[HIL_PAYLOAD_MAX];
+    ht_params_t l;
+    memset(&l, 0, sizeof l);
+    l.kp_aileron = 0x01010101;
+    l.kp_elevator = 0x02020202;
+    l.kp_rudder = 0x03030303;
+    l.kff_aileron = 0x04040404;
+    l.kff_elevator = 0x05050505;
+    l.kff_rudder = 0x06060606;
+    l.kd_aileron = 0x07070707;
+    l.kd_elevator = 0x08080808;
+    l.kd_rudder = 0x09090909;
+    l.v_ref_cm_s = -123456;
+    l.v_min_cm_s = 4567;
+    l.schedule = 0xA1u;
+    l.max_tilt = 0x0B0C0D0E;
+    l.pitch_mode = 0xA2u;
+    memset(p, 0xEE, sizeof p);
+    hil_cfg_law_write(p, &l);
+    TEST_ASSERT_EQUAL_UINT8(50u, HIL_LEN_CFG_LAW);
+    for (int i = 0; i < 9; ++i) {
+        TEST_ASSERT_EQUAL_INT32(0x01010101 * (i + 1), hil_get_i32(&p[4 * i]));
+    }
+    TEST_ASSERT_EQUAL_INT32(-123456, hil_get_i32(&p[36]));
+    TEST_ASSERT_EQUAL_INT32(4567, hil_get_i32(&p[40]));
+    TEST_ASSERT_EQUAL_HEX8(0xA1u, p[44]);
+    TEST_ASSERT_EQUAL_INT32(0x0B0C0D0E, hil_get_i32(&p[45]));
+    TEST_ASSERT_EQUAL_HEX8(0xA2u, p[49]);
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[50]); /* nothing written beyond the frame */
+    ht_params_t back;
+    memset(&back, 0, sizeof back);
+    hil_cfg_law_parse(p, &back);
+    TEST_ASSERT_EQUAL_MEMORY(&l, &back, sizeof l);
+
+    fw_config_t c;
+    memset(&c, 0, sizeof c);
+    ht_dcm_params_t *d = &c.dcm;
+    d->imu_rate_hz = 0xB1B2u;
+    d->kp_rollpitch = 0x11111111;
+    d->ki_rollpitch = 0x12121212;
+    d->kp_yaw = 0x13131313;
+    d->ki_yaw = 0x14141414;
+    d->gyro_bias_max_rad_s = 0x15151515;
+    d->gyro_limit_rad_s = 0x16161616;
+    d->accel_limit_g = 0x17171717;
+    d->accel_band_g = 0x18181818;
+    d->gps_min_speed_cm_s = -2345;
+    d->centripetal = 0xC1u;
+    d->gps_latency_ms = 0xD1D2u;
+    c.control_divider = 0xE1E2u;
+    c.imu_timeout_samples = 0xF1F2u;
+    memset(p, 0xEE, sizeof p);
+    hil_cfg_est_write(p, &c);
+    TEST_ASSERT_EQUAL_UINT8(43u, HIL_LEN_CFG_EST);
+    TEST_ASSERT_EQUAL_HEX16(0xB1B2u, hil_get_u16(&p[0]));
+    for (int i = 0; i < 8; ++i) {
+        TEST_ASSERT_EQUAL_INT32(0x11111111 + 0x01010101 * i, hil_get_i32(&p[2 + 4 * i]));
+    }
+    TEST_ASSERT_EQUAL_INT16(-2345, hil_get_i16(&p[34]));
+    TEST_ASSERT_EQUAL_HEX8(0xC1u, p[36]);
+    TEST_ASSERT_EQUAL_HEX16(0xD1D2u, hil_get_u16(&p[37]));
+    TEST_ASSERT_EQUAL_HEX16(0xE1E2u, hil_get_u16(&p[39]));
+    TEST_ASSERT_EQUAL_HEX16(0xF1F2u, hil_get_u16(&p[41]));
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[43]);
+    fw_config_t cb;
+    memset(&cb, 0, sizeof cb);
+    hil_cfg_est_parse(p, &cb);
+    TEST_ASSERT_EQUAL_MEMORY(&c.dcm, &cb.dcm, sizeof c.dcm);
+    TEST_ASSERT_EQUAL_UINT16(c.control_divider, cb.control_divider);
+    TEST_ASSERT_EQUAL_UINT16(c.imu_timeout_samples, cb.imu_timeout_samples);
 }
 
 int main(void)
@@ -829,5 +919,6 @@ int main(void)
     RUN_TEST(test_bad_frames_are_never_acted_on);
     RUN_TEST(test_sensors_before_start_are_refused);
     RUN_TEST(test_start_checks_the_configuration);
+    RUN_TEST(test_cfg_frames_follow_the_table);
     return UNITY_END();
 }

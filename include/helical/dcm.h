@@ -45,6 +45,7 @@
 
 #include <stdint.h>
 
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
@@ -58,48 +59,45 @@ typedef enum {
     HT_DCM_CF_AUTO = 2      /* the GPS velocity when it has a fix, else the airspeed */
 } ht_dcm_cf_t;
 
-/* Parameters, physical units as integers (no float on the board). */
+/* Parameters, physical units as integers (no float on the board). The
+ * fields, their order, units, ranges and defaults are those of the parameter
+ * table, include/helical/params.def:
+ *   uint16_t imu_rate_hz;       one ht_dcm_update per sample, [50, 1000]; default 200
+ *   q16_t kp_rollpitch;         1/s, [0, 16]; default 0.2 (MatrixPilot-like)
+ *   q16_t ki_rollpitch;         1/s^2, [0, 4]; default 0.01
+ *   q16_t kp_yaw;               1/s, [0, 16]; default 0.5
+ *   q16_t ki_yaw;               1/s^2, [0, 4]; default 0.02
+ *   q16_t gyro_bias_max_rad_s;  bound of each bias component, [0, 1]; default 0.1
+ *   q16_t gyro_limit_rad_s;     the gyro's full scale: |w| >= this flags saturation,
+ *                               [1, 64]; default 34.9 (2000 deg/s)
+ *   q16_t accel_limit_g;        the accelerometer's full scale, [1, 32]; default 16
+ *   q16_t accel_band_g;         the gravity reference's weight falls linearly from 1
+ *                               at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5
+ *   int16_t gps_min_speed_cm_s; course used for yaw above this, [0, 10000]; default 300
+ *   uint8_t centripetal;        ht_dcm_cf_t; default HT_DCM_CF_AUTO
+ *   uint16_t gps_latency_ms;    a GPS velocity is delivered this long after its epoch
+ *                               (gps_fresh), [0, 500]; default 100. It must be below the
+ *                               GPS period for the GPS acceleration reference (see below)
+ */
 typedef struct {
-    uint16_t imu_rate_hz;       /* one ht_dcm_update per sample, [50, 1000]; default 200 */
-    q16_t kp_rollpitch;         /* 1/s, [0, 16]; default 0.2 (MatrixPilot-like) */
-    q16_t ki_rollpitch;         /* 1/s^2, [0, 4]; default 0.01 */
-    q16_t kp_yaw;               /* 1/s, [0, 16]; default 0.5 */
-    q16_t ki_yaw;               /* 1/s^2, [0, 4]; default 0.02 */
-    q16_t gyro_bias_max_rad_s;  /* bound of each bias component, [0, 1]; default 0.1 */
-    q16_t gyro_limit_rad_s;     /* the gyro's full scale: |w| >= this flags saturation,
-                                   [1, 64]; default 34.9 (2000 deg/s) */
-    q16_t accel_limit_g;        /* the accelerometer's full scale, [1, 32]; default 16 */
-    q16_t accel_band_g;         /* the gravity reference's weight falls linearly from 1
-                                   at |f| = 1 g to 0 at |f| = 1 +/- band, (0, 4]; default 0.5 */
-    int16_t gps_min_speed_cm_s; /* course used for yaw above this, [0, 10000]; default 300 */
-    uint8_t centripetal;        /* ht_dcm_cf_t; default HT_DCM_CF_AUTO */
-    uint16_t gps_latency_ms;    /* a GPS velocity is delivered this long after its epoch
-                                   (gps_fresh), [0, 500]; default 100. It must be below the
-                                   GPS period for the GPS acceleration reference (see below) */
+    HT_PARAMS_DCM(HT_PARAM_X_FIELD)
 } ht_dcm_params_t;
 
 /* Fills p with the defaults above. */
 void ht_dcm_params_default(ht_dcm_params_t *p);
 
+/* HT_DCM_P_<ID> of each row of params.def, in its order. */
+#define HT_PARAM_X_DCM_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_DCM_P_##id,
 typedef enum {
     HT_DCM_P_NONE = 0,
-    HT_DCM_P_IMU_RATE,
-    HT_DCM_P_KP_ROLLPITCH,
-    HT_DCM_P_KI_ROLLPITCH,
-    HT_DCM_P_KP_YAW,
-    HT_DCM_P_KI_YAW,
-    HT_DCM_P_BIAS_MAX,
-    HT_DCM_P_GYRO_LIMIT,
-    HT_DCM_P_ACCEL_LIMIT,
-    HT_DCM_P_ACCEL_BAND,
-    HT_DCM_P_GPS_MIN_SPEED,
-    HT_DCM_P_CENTRIPETAL,
-    HT_DCM_P_GPS_LATENCY,
-    HT_DCM_P_COUNT
+    HT_PARAMS_DCM(HT_PARAM_X_DCM_ID) HT_DCM_P_COUNT
 } ht_dcm_param_id_t;
 
 /* "imu_rate_hz", "kp_rollpitch", ... or "". */
 const char *ht_dcm_param_name(ht_dcm_param_id_t id);
+
+/* The table's row of a parameter, or NULL (HT_DCM_P_NONE, HT_DCM_P_COUNT, ...). */
+const ht_param_info_t *ht_dcm_param_info(ht_dcm_param_id_t id);
 
 /* The parameters converted once; read-only after ht_dcm_init. Internal
  * formats are the implementation's (see dcm.c). */

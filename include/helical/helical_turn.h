@@ -27,6 +27,7 @@
 
 #include <stdint.h>
 
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
@@ -61,26 +62,26 @@ typedef enum {
 /*
  * Parameters, in physical units as integers, so that a board can hold them in
  * flash without any float support. Gains are Q16 (Q16_FROM_REAL(3.0)).
- * Ranges are checked by ht_init().
+ * Ranges are checked by ht_init(). The fields, their order, units, ranges and
+ * defaults are those of the parameter table, include/helical/params.def:
+ *   q16_t kp_aileron, kp_elevator, kp_rudder;     command per unit error, [0, 64]
+ *   q16_t kff_aileron, kff_elevator, kff_rudder;  command per rad/s at v_ref, [0, 64]
+ *   q16_t kd_aileron, kd_elevator, kd_rudder;     command per rad/s, [0, 64]
+ *   int32_t v_ref_cm_s;  airspeed scaling reference, [100, 32767], at most 32 * v_min,
+ *                        and per axis kff * v_ref / v_min + kd * s_p,max <= 512
+ *   int32_t v_min_cm_s;  airspeed floor, [100, 32767] (1 m/s)
+ *   uint8_t schedule;    1: kp, kd also scaled by v_ref / S
+ *   q16_t max_tilt;      limit on |turn_rate * S / g|, (0, 8]
+ *   uint8_t pitch_mode;  ht_pitch_mode_t
  */
 typedef struct {
-    q16_t kp_aileron, kp_elevator, kp_rudder;    /* command per unit error, [0, 64] */
-    q16_t kff_aileron, kff_elevator, kff_rudder; /* command per rad/s at v_ref, [0, 64] */
-    q16_t kd_aileron, kd_elevator, kd_rudder;    /* command per rad/s, [0, 64] */
-    int32_t v_ref_cm_s;                          /* airspeed scaling reference, [v_min, 32767],
-                                                    at most 32 * v_min; and per axis
-                                                    kff * v_ref / v_min + kd * s_p,max <= 512 */
-    int32_t v_min_cm_s;                          /* airspeed floor, [100, 32767] (1 m/s) */
-    uint8_t schedule;                            /* 1: kp, kd also scaled by v_ref / S */
-    q16_t max_tilt;                              /* limit on |turn_rate * S / g|, (0, 8] */
-    uint8_t pitch_mode;                          /* ht_pitch_mode_t */
+    HT_PARAMS_LAW(HT_PARAM_X_FIELD)
 } ht_params_t;
 
-/* The defaults of docs/control-law.md. */
+/* The defaults of docs/control-law.md (the table's default column). */
 #define HT_PARAMS_DEFAULT                                                                          \
     {                                                                                              \
-        Q16_ONE, Q16_ONE, Q16_ONE, 0, 0, 0, 0, 0, 0, 1500, 500, 0, 4 * Q16_ONE,                    \
-            (uint8_t)HT_PITCH_EARTH_FRAME                                                          \
+        HT_PARAMS_LAW(HT_PARAM_X_DEFAULT)                                                          \
     }
 
 /* ht_init results. */
@@ -90,28 +91,17 @@ typedef enum {
     HT_ERR_PARAM = 2 /* a parameter out of range: see *bad_field */
 } ht_status_t;
 
-/* Parameter identifiers, for error messages (ht_param_name). */
-typedef enum {
-    HT_P_NONE = 0,
-    HT_P_KP_AILERON,
-    HT_P_KP_ELEVATOR,
-    HT_P_KP_RUDDER,
-    HT_P_KFF_AILERON,
-    HT_P_KFF_ELEVATOR,
-    HT_P_KFF_RUDDER,
-    HT_P_KD_AILERON,
-    HT_P_KD_ELEVATOR,
-    HT_P_KD_RUDDER,
-    HT_P_V_REF,
-    HT_P_V_MIN,
-    HT_P_SCHEDULE,
-    HT_P_MAX_TILT,
-    HT_P_PITCH_MODE,
-    HT_P_COUNT
-} ht_param_id_t;
+/* Parameter identifiers, for error messages (ht_param_name): HT_P_<ID> of
+ * each row of params.def, in its order. */
+#define HT_PARAM_X_LAW_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_P_##id,
+typedef enum { HT_P_NONE = 0, HT_PARAMS_LAW(HT_PARAM_X_LAW_ID) HT_P_COUNT } ht_param_id_t;
 
 /* The control-law.md name of a parameter ("kp_aileron", ...), or "" . */
 const char *ht_param_name(ht_param_id_t id);
+
+/* The table's row of a parameter (name, unit, format, stored bounds and
+ * default), or NULL for HT_P_NONE, HT_P_COUNT and anything else. */
+const ht_param_info_t *ht_param_info(ht_param_id_t id);
 
 /* Per-axis gains in the core's order: index 0 = body X (elevator gains),
  * 1 = body Y (aileron gains), 2 = body Z (rudder gains). */

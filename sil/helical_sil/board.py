@@ -12,7 +12,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-ABI_VERSION = 10
+from helical_sil import params as ptable
+
+ABI_VERSION = 11
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
@@ -23,12 +25,9 @@ _I = ctypes.c_int32
 
 class SilConfig(ctypes.Structure):
     _fields_ = [
-        *((n, _D) for n in (
-            "kp_aileron", "kp_elevator", "kp_rudder",
-            "kff_aileron", "kff_elevator", "kff_rudder",
-            "kd_aileron", "kd_elevator", "kd_rudder",
-            "v_ref_m_s", "v_min_m_s", "max_tilt")),
-        ("schedule", _I),
+        # ABI 11: one value per row of the parameter table, in its order and units
+        ("law", _D * len(ptable.LAW)),
+        ("estimator", _D * len(ptable.ESTIMATOR)),
         *((n, _D) for n in (
             "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
             "alt_max_pitch", "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
@@ -57,14 +56,6 @@ class SilConfig(ctypes.Structure):
         # ABI 7: the altitude hold's airspeed protection (holds.h)
         *((n, _D) for n in ("alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv_pitch_per_m_s",
                             "alt_protect_tau_s")),
-        # ABI 8: the attitude estimator (dcm.h)
-        ("imu_rate_hz", _I),
-        *((n, _D) for n in ("dcm_kp_rollpitch", "dcm_ki_rollpitch", "dcm_kp_yaw", "dcm_ki_yaw",
-                            "dcm_gyro_bias_max_deg_s", "dcm_gyro_limit_deg_s",
-                            "dcm_accel_limit_g", "dcm_accel_band_g", "dcm_gps_min_speed_m_s")),
-        ("dcm_centripetal", _I),
-        # ABI 10: the GPS latency the estimator assumes
-        ("dcm_gps_latency_s", _D),
     ]
 
 
@@ -86,16 +77,6 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "alt_protect_m_s": 0.0, "alt_protect_valid_m_s": 0.0, "alt_kv_pitch_per_m_s": 0.0,
     "alt_protect_tau_s": 0.0,
 }
-
-# ABI 8: the estimator's parameters (dcm.h defaults; imu_rate_hz is the
-# scenario's sim rate, set by sim.board_config).
-ESTIMATOR_CONFIG_DEFAULTS: dict[str, Any] = {
-    "dcm_kp_rollpitch": 0.4, "dcm_ki_rollpitch": 0.04, "dcm_kp_yaw": 0.5, "dcm_ki_yaw": 0.02,
-    "dcm_gyro_bias_max_deg_s": 5.7, "dcm_gyro_limit_deg_s": 2000.0, "dcm_accel_limit_g": 16.0,
-    "dcm_accel_band_g": 0.5, "dcm_gps_min_speed_m_s": 3.0, "dcm_centripetal": 2,
-    "dcm_gps_latency_s": 0.1,
-}
-
 
 class SilSensors(ctypes.Structure):
     _fields_ = [
@@ -154,6 +135,13 @@ class SilActuators(ctypes.Structure):
     ]
 
 
+class ParamInfo(ctypes.Structure):
+    """ht_param_info_t (include/helical/params.h): one row of the compiled table."""
+    _fields_ = [("name", ctypes.c_char_p), ("unit", ctypes.c_char_p), ("format", ctypes.c_char_p),
+                ("description", ctypes.c_char_p), ("min_raw", _I), ("max_raw", _I),
+                ("default_raw", _I), ("scale", _I), ("bytes", ctypes.c_uint8)]
+
+
 class BoardError(RuntimeError):
     """The board library is missing, stale, or refused a parameter."""
 
@@ -181,25 +169,55 @@ def find_board_library(explicit: str | os.PathLike[str] | None = None) -> Path:
         "(cmake --workflow --preset host) or set HT_SIL_BOARD_LIB")
 
 
+def table_values(config: dict[str, Any]) -> tuple[dict[str, float], dict[str, float]]:
+    """The law's and the estimator's values of a board config, in the table's
+    units: config["law"] and config["estimator"] (name -> value) over the
+    table's defaults; unknown names are refused. The IMU runs at three samples
+    per control step unless said (the SIL's 120 Hz at 40 Hz)."""
+    law = ptable.law_defaults()
+    est = ptable.estimator_defaults()
+    est["imu_rate_hz"] = float(3 * int(config.get("control_rate_hz", 40)))
+    for group, known, into in (("law", ptable.LAW_BY_NAME, law),
+                               ("estimator", ptable.ESTIMATOR_BY_NAME, est)):
+        given = config.get(group, {})
+        for k, v in given.items():
+            if k not in known:
+                raise BoardError(f"board config {group}: unknown parameter '{k}' "
+                                 f"(the table's: {', '.join(known)})")
+            into[k] = float(v)
+    return law, est
+
+
 class Board:
     """One firmware instance (the C struct lives in a ctypes buffer we own)."""
 
     _libs: dict[str, ctypes.CDLL] = {}
 
-    def __init__(self, config: dict[str, Any], lib_path: str | os.PathLike[str] | None = None):
+    @staticmethod
+    def library(lib_path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
+        """The board library, loaded once per path and checked (ABI, struct sizes)."""
         path = str(find_board_library(lib_path))
         lib = Board._libs.get(path)
         if lib is None:
             lib = ctypes.CDLL(path)
             _declare(lib)
             Board._libs[path] = lib
+        return lib
+
+    def __init__(self, config: dict[str, Any], lib_path: str | os.PathLike[str] | None = None):
+        lib = Board.library(lib_path)
         self._lib = lib
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
-        full = {**MODES_CONFIG_DEFAULTS, **ESTIMATOR_CONFIG_DEFAULTS, **config}
-        # the IMU at three samples per control step unless said (the SIL's 120 Hz at 40 Hz)
-        full.setdefault("imu_rate_hz", 3 * int(full.get("control_rate_hz", 40)))
+        full = {**MODES_CONFIG_DEFAULTS, **config}
+        law, est = table_values(full)
+        for i, p in enumerate(ptable.LAW):
+            cfg.law[i] = law[p.name]
+        for i, p in enumerate(ptable.ESTIMATOR):
+            cfg.estimator[i] = est[p.name]
         for name, _t in SilConfig._fields_:
+            if name in ("law", "estimator"):
+                continue
             if name not in full:
                 raise BoardError(f"board config lacks '{name}'")
             if name == "waypoints":
@@ -211,9 +229,9 @@ class Board:
                         cfg.waypoints[i][k] = float(wp[k])
                 continue
             setattr(cfg, name, full[name])
-        err = ctypes.create_string_buffer(64)
+        err = ctypes.create_string_buffer(160)
         if lib.sil_board_init(self._state, ctypes.byref(cfg), err, len(err)) != 0:
-            raise BoardError(f"the board refused parameter '{err.value.decode()}'")
+            raise BoardError(f"the board refused parameter {err.value.decode()}")
         self._sensors = SilSensors()
         self._sensors.use_truth = 1  # the truth fields fly unless a caller gives raw samples
         self._command = SilCommand()
@@ -236,6 +254,23 @@ class Board:
         return self._act
 
 
+def compiled_table(lib_path: str | os.PathLike[str] | None = None) -> dict[str, list[dict[str, Any]]]:
+    """The parameter table as the C side compiled it (sil_param_info), per
+    group ("LAW", "DCM"): name, unit, format, stored bounds and default."""
+    lib = Board.library(lib_path)
+    out: dict[str, list[dict[str, Any]]] = {}
+    for g, key in ((0, "LAW"), (1, "DCM")):
+        rows = []
+        for i in range(lib.sil_param_count(g)):
+            r = lib.sil_param_info(g, i).contents
+            rows.append({"name": r.name.decode(), "unit": r.unit.decode(),
+                         "format": r.format.decode(), "description": r.description.decode(),
+                         "min_raw": r.min_raw, "max_raw": r.max_raw,
+                         "default_raw": r.default_raw, "scale": r.scale, "bytes": r.bytes})
+        out[key] = rows
+    return out
+
+
 def _declare(lib: ctypes.CDLL) -> None:
     lib.sil_board_abi_version.restype = ctypes.c_int
     for fn in ("sil_board_size", "sil_config_size", "sil_sensors_size", "sil_command_size",
@@ -251,6 +286,10 @@ def _declare(lib: ctypes.CDLL) -> None:
     lib.sil_board_init.restype = ctypes.c_int
     lib.sil_board_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_char_p,
                                    ctypes.c_size_t]
+    lib.sil_param_count.restype = ctypes.c_int
+    lib.sil_param_count.argtypes = [ctypes.c_int]
+    lib.sil_param_info.restype = ctypes.POINTER(ParamInfo)
+    lib.sil_param_info.argtypes = [ctypes.c_int, ctypes.c_int]
     lib.sil_board_step.restype = None
     lib.sil_board_step.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
                                    ctypes.c_void_p]

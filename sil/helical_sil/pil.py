@@ -39,21 +39,26 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterator
 
-from helical_sil import sim
-from helical_sil.board import Board, BoardError, SilActuators
+from helical_sil import params, sim
+from helical_sil.board import Board, BoardError, SilActuators, table_values
 
 # --- the protocol (docs/hil-protocol.md) -------------------------------------
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 4  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency
+PROTOCOL_VERSION = 5  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency;
+#                        5: CFG_LAW and CFG_EST laid out by the parameter table
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)
 ID_SENSORS, ID_STEP, ID_TRUTH, ID_IMU = 0x20, 0x21, 0x22, 0x23
 ID_READY, ID_NAK, ID_ACK, ID_OUTPUT, ID_STATE = 0x81, 0x8E, 0x94, 0xA0, 0xA1
 FW_LENGTHS = {ID_READY: 24, ID_NAK: 2, ID_ACK: 4, ID_OUTPUT: 40, ID_STATE: 55}
-LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS, LEN_CFG_EST = 52, 42, 24, 28, 43
+LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS = 52, 42, 24, 28
+# the configuration frames of the parameter table's rows (hil_fw.h): CFG_LAW
+# the law's rows in order, CFG_EST the estimator's, then divider and timeout
+LEN_CFG_LAW = params.payload_length(params.LAW)
+LEN_CFG_EST = params.payload_length(params.ESTIMATOR) + 4
 IMU_MAX = 32  # samples per control step (HIL_IMU_MAX = SIL_IMU_MAX)
 # The firmware's receive ring holds 255 bytes: a step's frames beyond this
 # many bytes are sent after a HELLO/READY round trip (the firmware has then
@@ -195,22 +200,24 @@ def _u16(v: int) -> bytes:
 
 
 def cfg_est_payload(c: dict[str, Any]) -> bytes:
-    """CFG_EST: the estimator and the IMU timing, as sil_board_init converts
-    them (dcm_params; divider = imu / control rate; timeout = imu rate / 5)."""
-    rad = math.pi / 180.0
-    imu, ctl = int(c["imu_rate_hz"]), int(c["control_rate_hz"])
+    """CFG_EST: the estimator's rows of the parameter table in order, as
+    sil_board_init converts them, then the IMU timing (divider = imu / control
+    rate; timeout = imu rate / 5)."""
+    _, est = table_values(c)
+    imu, ctl = int(est["imu_rate_hz"]), int(c["control_rate_hz"])
     if ctl < 1 or imu < ctl or imu % ctl != 0 or imu // ctl > IMU_MAX:
         raise PilError(f"imu_rate_hz {imu} is not 1..{IMU_MAX} times control_rate_hz {ctl}")
-    p = _u16(to_fixed(imu, 1.0, 0, 0xFFFF)) + _u16(imu // ctl) + _u16(imu // 5)
-    p += b"".join(_i32(q16(c[k])) for k in (
-        "dcm_kp_rollpitch", "dcm_ki_rollpitch", "dcm_kp_yaw", "dcm_ki_yaw"))
-    p += _i32(q16(c["dcm_gyro_bias_max_deg_s"] * rad))
-    p += _i32(q16(c["dcm_gyro_limit_deg_s"] * rad))
-    p += _i32(q16(c["dcm_accel_limit_g"])) + _i32(q16(c["dcm_accel_band_g"]))
-    p += _i16(cm16(c["dcm_gps_min_speed_m_s"]))
-    p += bytes((to_fixed(c["dcm_centripetal"], 1.0, 0, 255),))
-    p += _u16(to_fixed(c["dcm_gps_latency_s"], 1000.0, 0, 0xFFFF))
+    p = params.payload(params.ESTIMATOR, est) + _u16(imu // ctl) + _u16(imu // 5)
     assert len(p) == LEN_CFG_EST
+    return p
+
+
+def cfg_law_payload(c: dict[str, Any]) -> bytes:
+    """CFG_LAW: the law's rows of the parameter table in order, as
+    sil_board_init converts them."""
+    law, _ = table_values(c)
+    p = params.payload(params.LAW, law)
+    assert len(p) == LEN_CFG_LAW
     return p
 
 
@@ -231,16 +238,10 @@ def output_channels(config: dict[str, Any]) -> list[dict[str, int]]:
 
 
 def config_frames(config: dict[str, Any]) -> list[bytes]:
-    """CFG_LAW, CFG_ALT, CFG_SPD, CFG_OUT for a board config (sim.board_config)."""
+    """CFG_LAW, CFG_ALT, CFG_SPD, CFG_OUT, CFG_EST for a board config (sim.board_config)."""
     c = config
     rate = int(c["control_rate_hz"])
-    law = b"".join(q16(c[k]).to_bytes(4, "little", signed=True) for k in (
-        "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator", "kff_rudder",
-        "kd_aileron", "kd_elevator", "kd_rudder"))
-    law += cm32(c["v_ref_m_s"]).to_bytes(4, "little", signed=True)
-    law += cm32(c["v_min_m_s"]).to_bytes(4, "little", signed=True)
-    law += q16(c["max_tilt"]).to_bytes(4, "little", signed=True)
-    law += bytes((1 if c["schedule"] != 0 else 0,))
+    law = cfg_law_payload(c)
     alt = b"".join(q16(c[k]).to_bytes(4, "little", signed=True) for k in (
         "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s", "alt_max_pitch",
         "alt_max_integral_pitch"))
@@ -267,12 +268,9 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
         out += ch["trim_us"].to_bytes(2, "little", signed=True)
         for k in ("travel_us", "min_us", "max_us", "failsafe_us"):
             out += ch[k].to_bytes(2, "little")
-    assert (len(law), len(alt), len(spd), len(out)) == (49, 52, 22, 58)
-    frames = [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
-              encode(ID_CFG_OUT, out)]
-    if "imu_rate_hz" in c:
-        frames.append(encode(ID_CFG_EST, cfg_est_payload(c)))
-    return frames
+    assert (len(alt), len(spd), len(out)) == (52, 22, 58)
+    return [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
+            encode(ID_CFG_OUT, out), encode(ID_CFG_EST, cfg_est_payload(c))]
 
 
 def imu_count(s: Any) -> int:

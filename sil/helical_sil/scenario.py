@@ -14,17 +14,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from helical_sil import params
 from helical_sil import sensors as sensors_mod
 
 SIL_DIR = Path(__file__).resolve().parents[1]
 DEFAULT_AIRCRAFT_DIR = SIL_DIR / "scenarios" / "aircraft"
 
-LAW_PARAMS = (
-    "kp_aileron", "kp_elevator", "kp_rudder",
-    "kff_aileron", "kff_elevator", "kff_rudder",
-    "kd_aileron", "kd_elevator", "kd_rudder",
-    "v_ref", "v_min", "schedule", "max_tilt",
-)
+# The law's rows of the parameter table (include/helical/params.def), by its
+# names, units, bounds and defaults; pitch_mode is not a [gains] key (each
+# [[command]] chooses the pitch method).
+LAW_PARAMS = tuple(p.name for p in params.LAW if p.name != "pitch_mode")
 HOLD_PARAMS = (
     "alt_kp", "alt_ki", "alt_kd", "alt_max_pitch", "alt_max_integral", "alt_max_error_m",
     "alt_integral_band_m",
@@ -36,10 +35,7 @@ HOLD_PARAMS = (
 GAIN_KEYS = LAW_PARAMS + HOLD_PARAMS
 # Defaults of the parameters an aircraft file may leave out (control-law.md, holds).
 GAIN_DEFAULTS: dict[str, float] = {
-    "kp_aileron": 1.0, "kp_elevator": 1.0, "kp_rudder": 1.0,
-    "kff_aileron": 0.0, "kff_elevator": 0.0, "kff_rudder": 0.0,
-    "kd_aileron": 0.0, "kd_elevator": 0.0, "kd_rudder": 0.0,
-    "v_ref": 15.0, "v_min": 5.0, "schedule": 0, "max_tilt": 4.0,
+    **{k: params.LAW_BY_NAME[k].default for k in LAW_PARAMS},
     "alt_kp": 0.01, "alt_ki": 0.0, "alt_kd": 0.0, "alt_max_pitch": 0.3,
     "alt_max_integral": 0.2, "alt_max_error_m": 1000.0, "alt_integral_band_m": 10.0,
     "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
@@ -49,17 +45,14 @@ GAIN_DEFAULTS: dict[str, float] = {
     "throttle_min": 0.0, "throttle_max": 1.0,
 }
 
-# The range of every gain key, in the file's units: the ONE place a gain's
-# bound is written in Python (_gains checks it, the cross-field messages quote
-# it). They are the board's checks (sil_board_init, ht_init,
-# ht_alt_hold_check, ht_speed_hold_check), so a file the loader accepts is not
-# refused by the board later.
-_GAIN_0_64 = (0.0, 64.0)  # ht_params.c / holds.c: gains in [0, 64]
+# The range of every gain key, in the file's units (_gains checks it, the
+# cross-field messages quote it). The law's come from the parameter table,
+# exactly as ht_init checks them; the holds' are written here (their checks
+# are ht_alt_hold_check, ht_speed_hold_check), so a file the loader accepts is
+# not refused by the board later.
+_GAIN_0_64 = (0.0, 64.0)  # holds.c: gains in [0, 64]
 GAIN_BOUNDS: dict[str, tuple[float, float]] = {
-    **{k: _GAIN_0_64 for k in LAW_PARAMS if k.startswith(("kp_", "kff_", "kd_"))},
-    "v_ref": (1.0, 327.0), "v_min": (1.0, 327.0),  # cm/s in int16, v_min >= 1 m/s
-    "schedule": (0.0, 1.0),
-    "max_tilt": (0.01, 8.0),                      # > 0 and <= 8 (82.9 deg of bank)
+    **{k: (params.LAW_BY_NAME[k].min, params.LAW_BY_NAME[k].max) for k in LAW_PARAMS},
     "alt_kp": _GAIN_0_64, "alt_ki": _GAIN_0_64, "alt_kd": _GAIN_0_64, "alt_kv": _GAIN_0_64,
     "alt_max_pitch": (0.001, 4.0),                # the hold needs a ceiling > 0
     "alt_max_integral": (0.0, 4.0),
@@ -432,6 +425,8 @@ def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
         key = f"{prefix}.{k}"
         if k == "schedule":
             out[k] = 1.0 if (_bool(src, key, v) if isinstance(v, bool) else _int(src, key, v, 0, 1)) else 0.0
+        elif k in params.LAW_BY_NAME:
+            out[k] = _table_value(src, key, v, params.LAW_BY_NAME[k])
         else:
             lo, hi = GAIN_BOUNDS[k]
             out[k] = _num(src, key, v, lo, hi)
@@ -622,13 +617,39 @@ COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb
                 "airspeed_m_s",
                 "throttle", "inverted", "pitch_mode", "gps")
 ATTITUDE_SOURCES = ("estimate", "truth")
-# [estimator]: the firmware estimator's parameters (dcm.h), SIL units
-ESTIMATOR_KEYS: dict[str, tuple[float, float]] = {
-    "kp_rollpitch": (0.0, 16.0), "ki_rollpitch": (0.0, 4.0), "kp_yaw": (0.0, 16.0),
-    "ki_yaw": (0.0, 4.0), "gyro_bias_max_deg_s": (0.0, 57.0),
-    "gps_min_speed_m_s": (0.0, 100.0), "accel_band_g": (0.01, 4.0), "centripetal": (0, 2),
-    "gps_latency_s": (0.0, 0.5),
+# [estimator]: the firmware estimator's rows of the parameter table, each key
+# -> (the table's name, the factor from the key's unit to the table's). A row
+# is a key by its own name unless the SIL derives it (imu_rate_hz from the sim
+# rate, gyro_limit and accel_limit from the sensor model) or an older key
+# spelling with its unit is kept (ESTIMATOR_SPELLINGS).
+_SIL_DERIVED = ("imu_rate_hz", "gyro_limit", "accel_limit")
+ESTIMATOR_SPELLINGS: dict[str, tuple[str, str, float]] = {
+    # table name: (scenario key, its unit, factor key unit -> table unit)
+    "gyro_bias_max": ("gyro_bias_max_deg_s", "deg/s", math.pi / 180.0),
+    "gps_min_speed": ("gps_min_speed_m_s", "m/s", 1.0),
+    "accel_band": ("accel_band_g", "g", 1.0),
+    "gps_latency": ("gps_latency_s", "s", 1000.0),
 }
+ESTIMATOR_KEYS: dict[str, tuple[str, float]] = {
+    ESTIMATOR_SPELLINGS.get(p.name, (p.name, p.unit, 1.0))[0]:
+        (p.name, ESTIMATOR_SPELLINGS.get(p.name, (p.name, p.unit, 1.0))[2])
+    for p in params.ESTIMATOR if p.name not in _SIL_DERIVED
+}
+
+
+def _table_value(src: Path, key: str, v: Any, p: params.Param, factor: float = 1.0,
+                 unit: str | None = None) -> float:
+    """A value of a table row given in the file (in unit = the row's unit /
+    factor): a number within the row's bounds, or an error quoting them:
+    "'gains.kp_aileron' = 65 is outside [0, 64] (per unit error, Q16)"."""
+    x = _num(src, key, v)
+    why = p.check(x * factor)
+    if why is not None:
+        if factor != 1.0:
+            why = (f"is outside [{p.min / factor:g}, {p.max / factor:g}] ({unit}; the table's "
+                   f"{p.name} in {p.bounds_text()})")
+        raise ScenarioError(f"{_where(src, key)} = {_show(v)} {why}")
+    return x
 
 
 # --- fault campaign (issue 7) ---
@@ -729,9 +750,11 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
         raise ScenarioError(f"{src}: [sensor_model] {e}") from None
     est = _table(src, "estimator", doc.get("estimator", {}))
     _check_keys(src, "estimator", est, tuple(ESTIMATOR_KEYS))
-    for k, (lo, hi) in ESTIMATOR_KEYS.items():
+    for k, (name, factor) in ESTIMATOR_KEYS.items():
         if k in est:
-            sc.estimator[k] = _num(src, "estimator." + k, est[k], lo, hi)
+            unit = ESTIMATOR_SPELLINGS.get(name, ("", params.ESTIMATOR_BY_NAME[name].unit))[1]
+            sc.estimator[k] = _table_value(src, "estimator." + k, est[k],
+                                           params.ESTIMATOR_BY_NAME[name], factor, unit)
 
     sens = _table(src, "sensors", doc.get("sensors", {}))
     _check_keys(src, "sensors", sens, SENSOR_KEYS)

@@ -14,17 +14,17 @@ import sys
 import time
 from collections import deque
 from dataclasses import dataclass, field
-from typing import Iterator
+from typing import Any, Iterator
 
 import jsbsim
 import numpy as np
 
-from helical_sil import frames
+from helical_sil import frames, params
 from helical_sil.board import Board
 from helical_sil import sensors as sensors_mod
 from helical_sil.board import IMU_MAX
 from helical_sil.faults import SensorFaults  # fault campaign (issue 7)
-from helical_sil.scenario import Scenario
+from helical_sil.scenario import ESTIMATOR_KEYS, Scenario
 
 G = 9.80665
 FT = frames.FT
@@ -190,15 +190,12 @@ def _release_upset(fdm: jsbsim.FGFDMExec, sc: Scenario) -> None:
 # --- end fault campaign ---
 
 
-def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
+def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, Any]:
     g = sc.gains
     return {
-        "kp_aileron": g["kp_aileron"], "kp_elevator": g["kp_elevator"], "kp_rudder": g["kp_rudder"],
-        "kff_aileron": g["kff_aileron"], "kff_elevator": g["kff_elevator"],
-        "kff_rudder": g["kff_rudder"],
-        "kd_aileron": g["kd_aileron"], "kd_elevator": g["kd_elevator"], "kd_rudder": g["kd_rudder"],
-        "v_ref_m_s": g["v_ref"], "v_min_m_s": g["v_min"], "max_tilt": g["max_tilt"],
-        "schedule": int(g["schedule"]),
+        # the law's rows of the parameter table, by their names (the scenario's
+        # [gains] keys; pitch_mode is chosen per command, the table's default here)
+        "law": {p.name: g[p.name] for p in params.LAW if p.name in g},
         "alt_kp_pitch_per_m": g["alt_kp"], "alt_ki_pitch_per_m_s": g["alt_ki"],
         "alt_kd_pitch_per_m_s": g["alt_kd"], "alt_max_pitch": g["alt_max_pitch"],
         "alt_max_integral_pitch": g["alt_max_integral"], "alt_max_error_m": g["alt_max_error_m"],
@@ -215,30 +212,29 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, float]:
         "trim_aileron": trims["aileron"], "trim_elevator": trims["elevator"],
         "trim_rudder": trims["rudder"],
         "control_rate_hz": sc.control_rate_hz,
-        **estimator_config(sc),
+        "estimator": estimator_config(sc),
     }
 
 
 def estimator_config(sc: Scenario) -> dict[str, float]:
-    """The firmware estimator's parameters: dcm.h defaults, the scenario's
-    [estimator] overrides, the IMU at the sim rate and the sensors' full scales."""
+    """The firmware estimator's parameters in the table's units: its defaults
+    (params.def), the scenario's [estimator] overrides (converted from their
+    SIL units, scenario.ESTIMATOR_KEYS), the IMU at the sim rate and the
+    sensors' full scales."""
     model = sensors_mod.config_from_dict(sc.sensor_model)
-    e = sc.estimator
-    return {
-        "imu_rate_hz": sc.sim_rate_hz,
-        "dcm_kp_rollpitch": e.get("kp_rollpitch", 0.4),
-        "dcm_ki_rollpitch": e.get("ki_rollpitch", 0.04),
-        "dcm_kp_yaw": e.get("kp_yaw", 0.5), "dcm_ki_yaw": e.get("ki_yaw", 0.02),
-        "dcm_gyro_bias_max_deg_s": e.get("gyro_bias_max_deg_s", 5.7),
-        "dcm_gyro_limit_deg_s": math.degrees(model.imu.gyro.range_rad_s),
-        "dcm_accel_limit_g": model.imu.accel.range_g,
-        "dcm_accel_band_g": e.get("accel_band_g", 0.5),
-        "dcm_gps_min_speed_m_s": e.get("gps_min_speed_m_s", 3.0),
-        "dcm_centripetal": int(e.get("centripetal", 2)),
+    est = params.estimator_defaults()
+    est.update({
+        "imu_rate_hz": float(sc.sim_rate_hz),
+        "gyro_limit": model.imu.gyro.range_rad_s,
+        "accel_limit": model.imu.accel.range_g,
         # the estimator is told the receiver's latency: by default the one the
         # scenario's GPS model has (a user sets it from the receiver's datasheet)
-        "dcm_gps_latency_s": e.get("gps_latency_s", model.gps.latency_s),
-    }
+        "gps_latency": model.gps.latency_s * 1000.0,
+    })
+    for key, v in sc.estimator.items():
+        name, factor = ESTIMATOR_KEYS[key]
+        est[name] = v * factor
+    return est
 
 
 def sensor_model(sc: Scenario) -> sensors_mod.SensorModel:

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from helical_sil import metrics as met
-from helical_sil import pil, sim
+from helical_sil import params, pil, sim
 from helical_sil.scenario import load_scenario
 
 SIL_DIR = Path(__file__).resolve().parents[1]
@@ -63,8 +63,6 @@ def test_fixed_point_rounds_like_llround() -> None:
 
 def test_config_frames_have_the_documented_lengths() -> None:
     cfg = {k: 0.0 for k in (
-        "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator", "kff_rudder",
-        "kd_aileron", "kd_elevator", "kd_rudder", "v_ref_m_s", "v_min_m_s", "max_tilt",
         "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s", "alt_max_pitch",
         "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
         "alt_integral_upright", "alt_integral_inverted", "spd_throttle_trim", "spd_throttle_min",
@@ -72,10 +70,34 @@ def test_config_frames_have_the_documented_lengths() -> None:
         "spd_kff_throttle_per_pitch", "spd_max_integral_throttle", "trim_aileron",
         "trim_elevator", "trim_rudder", "alt_protect_m_s", "alt_protect_valid_m_s",
         "alt_kv_pitch_per_m_s", "alt_protect_tau_s")}
-    cfg.update(schedule=1, control_rate_hz=40)
+    cfg.update(control_rate_hz=40, law={"schedule": 1})
     frames = pil.config_frames(cfg)
-    assert [f[2] for f in frames] == [49, 52, 22, 58]
-    assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13]
+    # protocol 5 (docs/hil-protocol.md): CFG_LAW 50, CFG_EST 43 with today's table
+    assert [f[2] for f in frames] == [50, 52, 22, 58, 43]
+    assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13, 0x15]
+
+
+def test_cfg_law_and_cfg_est_follow_the_table() -> None:
+    """The documented offsets of protocol 5, from the table's order and widths:
+    each value lands where hil_fw.c's generated parser reads it."""
+    law = {"kp_aileron": 2.0, "kd_rudder": 0.5, "v_ref": 110.0, "v_min": 30.0,
+           "schedule": 1, "max_tilt": 2.5, "pitch_mode": 1}
+    p = pil.cfg_law_payload({"control_rate_hz": 40, "law": law})
+    i32 = lambda o: int.from_bytes(p[o:o + 4], "little", signed=True)  # noqa: E731
+    assert i32(0) == 2 * 65536 and i32(4) == 65536 and i32(32) == 32768
+    assert i32(36) == 11000 and i32(40) == 3000
+    assert p[44] == 1 and i32(45) == int(2.5 * 65536) and p[49] == 1 and len(p) == 50
+    est = {"imu_rate_hz": 120, "gyro_bias_max": 0.1, "gps_min_speed": -1.5, "gps_latency": 80}
+    p = pil.cfg_est_payload({"control_rate_hz": 40, "estimator": est})
+    assert int.from_bytes(p[0:2], "little") == 120
+    assert int.from_bytes(p[2:6], "little", signed=True) == 13107  # kp_rollpitch 0.2
+    assert int.from_bytes(p[18:22], "little", signed=True) == 6554  # 0.1 rad/s
+    assert int.from_bytes(p[34:36], "little", signed=True) == -150
+    assert p[36] == 2 and int.from_bytes(p[37:39], "little") == 80
+    assert int.from_bytes(p[39:41], "little") == 3 and int.from_bytes(p[41:43], "little") == 24
+    # every row of the table is in the frame, in order: offsets are the running sum
+    assert pil.LEN_CFG_LAW == sum(q.fmt.nbytes for q in params.LAW)
+    assert pil.LEN_CFG_EST == sum(q.fmt.nbytes for q in params.ESTIMATOR) + 4
 
 
 # --- the firmware under QEMU -----------------------------------------------------

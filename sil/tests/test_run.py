@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil import sim
+from helical_sil import params, sim
 from helical_sil.board import Board, SilActuators
 from helical_sil.cli import main
 from helical_sil.scenario import load_scenario
@@ -75,18 +75,19 @@ def test_repeated_run_in_a_new_process_is_bit_identical(tmp_path: Path, board_li
     assert digests[0] == digests[1]
 
 
-def _config(**over: float) -> dict[str, float]:
-    cfg = {name: 0.0 for name in (
-        "kp_aileron", "kp_elevator", "kp_rudder", "kff_aileron", "kff_elevator", "kff_rudder",
-        "kd_aileron", "kd_elevator", "kd_rudder", "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s",
+def _config(**over: float) -> dict[str, object]:
+    """A board config: the law's table defaults (override by name), holds off."""
+    cfg: dict[str, object] = {name: 0.0 for name in (
+        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s",
         "alt_kd_pitch_per_m_s", "alt_integral_upright", "alt_integral_inverted",
         "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch",
         "spd_throttle_min", "trim_aileron", "trim_elevator", "trim_rudder")}
-    cfg.update(kp_aileron=1.0, kp_elevator=1.0, kp_rudder=1.0, v_ref_m_s=15.0, v_min_m_s=5.0,
-               max_tilt=4.0, schedule=0, alt_max_pitch=0.3, alt_max_integral_pitch=0.2,
+    cfg.update(alt_max_pitch=0.3, alt_max_integral_pitch=0.2,
                alt_max_error_m=100.0, alt_integral_band_m=10.0, spd_throttle_trim=0.5,
                spd_throttle_max=1.0, spd_max_integral_throttle=0.5, control_rate_hz=40)
-    cfg.update(over)
+    law = {k: v for k, v in over.items() if k in params.LAW_BY_NAME}
+    cfg.update({k: v for k, v in over.items() if k not in law})
+    cfg["law"] = law
     return cfg
 
 

@@ -171,6 +171,22 @@ static void test_format_value_and_defaults_table(void)
     TEST_ASSERT_NOT_NULL(strstr(text, "  pitch_mode    earth|cross          default earth\n"));
 }
 
+/* The bounds the tool quotes are the table's, in --param units. */
+static void test_ranges_quote_the_table(void)
+{
+    char buf[96];
+    TEST_ASSERT_EQUAL_INT(0, ht_param_format_range(HT_P_KP_AILERON, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_STRING("kp_aileron in [0, 64] per unit error (Q16)", buf);
+    TEST_ASSERT_EQUAL_INT(0, ht_param_format_range(HT_P_V_MIN, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_STRING("v_min in [1, 327.67] m/s (int32 x100)", buf);
+    TEST_ASSERT_EQUAL_INT(0, ht_param_format_range(HT_P_PITCH_MODE, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_STRING("pitch_mode in [earth, cross] earth|cross (uint8)", buf);
+    TEST_ASSERT_EQUAL_INT(-1, ht_param_format_range(HT_P_COUNT, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_STRING("?", buf);
+    /* an integer field outside the table's range is refused while parsing */
+    bad("schedule=-1", "schedule: \"-1\" is not 0 or 1");
+}
+
 /* The whole path the tool takes: parse, then let ht_init judge the range. */
 static void test_parsed_values_reach_ht_init(void)
 {
@@ -198,5 +214,6 @@ int main(void)
     RUN_TEST(test_names_match_the_core);
     RUN_TEST(test_format_value_and_defaults_table);
     RUN_TEST(test_parsed_values_reach_ht_init);
+    RUN_TEST(test_ranges_quote_the_table);
     return UNITY_END();
 }

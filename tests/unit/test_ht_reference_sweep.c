@@ -338,7 +338,7 @@ static int32_t draw_i32(uint64_t *rng, int32_t lo, int32_t hi)
 static ht_params_t random_legal_params(uint64_t *rng)
 {
     for (;;) {
-        ht_params_t p;
+        ht_params_t p = HT_PARAMS_DEFAULT; /* a table row this draw does not know: its default */
         q16_t *gains[9] = {&p.kp_aileron,  &p.kp_elevator,  &p.kp_rudder,
                            &p.kff_aileron, &p.kff_elevator, &p.kff_rudder,
                            &p.kd_aileron,  &p.kd_elevator,  &p.kd_rudder};

@@ -56,11 +56,14 @@ static void usage(FILE *out)
                 "32 surface saturated), six decimals each.\n"
                 "\n"
                 "Parameters (--param NAME=VALUE or --param=NAME=VALUE; repeatable, last wins).\n"
-                "ht_init decides the allowed ranges; those of include/helical/helical_turn.h:\n"
-                "gains [0, 64], v_min [1, 327.67] m/s, v_ref [v_min, 327.67] m/s,\n"
-                "max_tilt (0, 8].\n",
+                "Names, units and defaults (the table include/helical/params.def):\n",
                 out);
     ht_param_print_table(out, &defaults);
+    (void)fputs("ht_init decides the allowed ranges: each field's own (the same table),\n"
+                "and v_min <= v_ref <= 32 v_min, per axis kff * v_ref / v_min + kd * s_p,max\n"
+                "<= 512 (docs/control-law.md):\n",
+                out);
+    ht_param_print_ranges(out);
     (void)fputs("\n"
                 "Errors go to stderr as \"ht_replay: line N, column NAME: what\" (the header\n"
                 "is line 1); rows before the bad one have already been printed.\n"
@@ -191,11 +194,13 @@ int main(int argc, char **argv)
         } else {
             (void)ht_param_format_value(&params, bad, value, sizeof value);
         }
+        char range[96];
+        (void)ht_param_format_range(bad, range, sizeof range);
         (void)fprintf(stderr,
                       "ht_replay: parameter %s=%s%s: refused by ht_init (outside the range the "
-                      "law allows; see --help)\n",
+                      "law allows: %s, and the joint limits; see --help)\n",
                       name[0] != '\0' ? name : "(unknown)", value,
-                      known && as_given == NULL ? " (the default)" : "");
+                      known && as_given == NULL ? " (the default)" : "", range);
         return EXIT_USAGE;
     }
 

@@ -6,31 +6,20 @@
 
 #include "number.h"
 
-typedef enum { KIND_GAIN_Q16, KIND_SPEED_CM_S, KIND_FLAG, KIND_PITCH_MODE } kind_t;
+/* The storage formats of the table's rows (include/helical/params.h). */
+typedef enum { FMT_Q16, FMT_CM32, FMT_CM16, FMT_U8, FMT_U16 } fmt_t;
 
 typedef struct {
     ht_param_id_t id;
     const char *name;
-    kind_t kind;
+    fmt_t fmt;
     const char *unit; /* for --help */
 } param_desc_t;
 
-static const param_desc_t params[] = {
-    {HT_P_KP_AILERON, "kp_aileron", KIND_GAIN_Q16, "per unit error"},
-    {HT_P_KP_ELEVATOR, "kp_elevator", KIND_GAIN_Q16, "per unit error"},
-    {HT_P_KP_RUDDER, "kp_rudder", KIND_GAIN_Q16, "per unit error"},
-    {HT_P_KFF_AILERON, "kff_aileron", KIND_GAIN_Q16, "per rad/s at v_ref"},
-    {HT_P_KFF_ELEVATOR, "kff_elevator", KIND_GAIN_Q16, "per rad/s at v_ref"},
-    {HT_P_KFF_RUDDER, "kff_rudder", KIND_GAIN_Q16, "per rad/s at v_ref"},
-    {HT_P_KD_AILERON, "kd_aileron", KIND_GAIN_Q16, "per rad/s"},
-    {HT_P_KD_ELEVATOR, "kd_elevator", KIND_GAIN_Q16, "per rad/s"},
-    {HT_P_KD_RUDDER, "kd_rudder", KIND_GAIN_Q16, "per rad/s"},
-    {HT_P_V_REF, "v_ref", KIND_SPEED_CM_S, "m/s"},
-    {HT_P_V_MIN, "v_min", KIND_SPEED_CM_S, "m/s"},
-    {HT_P_SCHEDULE, "schedule", KIND_FLAG, "0/1"},
-    {HT_P_MAX_TILT, "max_tilt", KIND_GAIN_Q16, "tilt ratio"},
-    {HT_P_PITCH_MODE, "pitch_mode", KIND_PITCH_MODE, "earth|cross"},
-};
+/* One row per parameter of include/helical/params.def: the option names are
+ * the table's names, in its order. */
+#define DESC(id, name, field, unit, fmt, lo, hi, def, desc) {HT_P_##id, #name, FMT_##fmt, unit},
+static const param_desc_t params[] = {HT_PARAMS_LAW(DESC)};
 
 #define N_PARAMS (sizeof params / sizeof params[0])
 
@@ -44,45 +33,33 @@ const char *ht_param_tool_name(ht_param_id_t id)
     return "";
 }
 
-/* The field of *p that a parameter sets. Q16 gains and max_tilt share a
- * type, as do the speeds, so one pointer per kind covers the table. */
-static q16_t *q16_field(ht_params_t *p, ht_param_id_t id)
+/* The stored value of a field, and the store (the value fits the field's
+ * type: the callers check it against the format first). */
+#define GET_RAW(id, name, field, unit, fmt, lo, hi, def, desc)                                     \
+    case HT_P_##id:                                                                                \
+        return (long)p->field;
+
+static long get_raw(const ht_params_t *p, ht_param_id_t id)
 {
     switch (id) {
-    case HT_P_KP_AILERON:
-        return &p->kp_aileron;
-    case HT_P_KP_ELEVATOR:
-        return &p->kp_elevator;
-    case HT_P_KP_RUDDER:
-        return &p->kp_rudder;
-    case HT_P_KFF_AILERON:
-        return &p->kff_aileron;
-    case HT_P_KFF_ELEVATOR:
-        return &p->kff_elevator;
-    case HT_P_KFF_RUDDER:
-        return &p->kff_rudder;
-    case HT_P_KD_AILERON:
-        return &p->kd_aileron;
-    case HT_P_KD_ELEVATOR:
-        return &p->kd_elevator;
-    case HT_P_KD_RUDDER:
-        return &p->kd_rudder;
-    case HT_P_MAX_TILT:
-        return &p->max_tilt;
+        HT_PARAMS_LAW(GET_RAW)
     default:
-        return NULL;
+        return 0;
     }
 }
 
-static int32_t *speed_field(ht_params_t *p, ht_param_id_t id)
+#define SET_RAW(id, name, field, unit, fmt, lo, hi, def, desc)                                     \
+    case HT_P_##id:                                                                                \
+        p->field = (HT_PFMT_TYPE_##fmt)v;                                                          \
+        break;
+
+static void set_raw(ht_params_t *p, ht_param_id_t id, long v)
 {
-    if (id == HT_P_V_REF) {
-        return &p->v_ref_cm_s;
+    switch (id) {
+        HT_PARAMS_LAW(SET_RAW)
+    default:
+        break;
     }
-    if (id == HT_P_V_MIN) {
-        return &p->v_min_cm_s;
-    }
-    return NULL;
 }
 
 /* Text for a message: s[0..len) cut with "..." to fit buf, bytes outside
@@ -111,6 +88,27 @@ void ht_param_show_text(const char *text, char *buf, size_t size)
     show(text, buf, size);
 }
 
+/* A value of an integer format (U8, U16): an integer within the table's
+ * range, refused here because a uint8 cannot even hold most wrong values. */
+static int parse_integer(const param_desc_t *d, const char *value, double v, long *out, char *msg,
+                         size_t size)
+{
+    const ht_param_info_t *info = ht_param_info(d->id);
+    char shown[44];
+    show(value, shown, sizeof shown);
+    if (v != (double)(long)v || (long)v < (long)info->min_raw || (long)v > (long)info->max_raw) {
+        if (info->min_raw == 0 && info->max_raw == 1) {
+            (void)snprintf(msg, size, "--param %s: \"%s\" is not 0 or 1", d->name, shown);
+        } else {
+            (void)snprintf(msg, size, "--param %s: \"%s\" is not an integer in [%ld, %ld]", d->name,
+                           shown, (long)info->min_raw, (long)info->max_raw);
+        }
+        return -1;
+    }
+    *out = (long)v;
+    return 0;
+}
+
 int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg, size_t size)
 {
     char shown[44];
@@ -134,24 +132,25 @@ int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg
         show_n(arg, name_len, name, sizeof name);
         (void)snprintf(msg, size,
                        "--param: unknown parameter \"%s\" (known: kp_, kff_, kd_ + aileron, "
-                       "elevator, rudder; v_ref, v_min, schedule, max_tilt, pitch_mode)",
+                       "elevator, rudder; v_ref, v_min, schedule, max_tilt, pitch_mode; "
+                       "ht_replay --help lists them)",
                        name);
         return -1;
     }
 
     show(value, shown, sizeof shown);
-    if (d->kind == KIND_PITCH_MODE) {
-        uint8_t mode;
+    long fixed = 0;
+    if (d->id == HT_P_PITCH_MODE) {
+        /* the one enumeration: its names, or its numbers */
         if (strcmp(value, "earth") == 0 || strcmp(value, "0") == 0) {
-            mode = (uint8_t)HT_PITCH_EARTH_FRAME;
+            fixed = (long)HT_PITCH_EARTH_FRAME;
         } else if (strcmp(value, "cross") == 0 || strcmp(value, "1") == 0) {
-            mode = (uint8_t)HT_PITCH_TILT_CROSS;
+            fixed = (long)HT_PITCH_TILT_CROSS;
         } else {
             (void)snprintf(msg, size, "--param %s: \"%s\" is not earth, cross, 0 or 1", d->name,
                            shown);
             return -1;
         }
-        p->pitch_mode = mode;
     } else {
         double v = 0.0;
         const char *why = ht_parse_number(value, strlen(value), &v);
@@ -159,64 +158,53 @@ int ht_param_parse(ht_params_t *p, const char *arg, ht_param_id_t *id, char *msg
             (void)snprintf(msg, size, "--param %s: %s: \"%s\"", d->name, why, shown);
             return -1;
         }
-        long fixed = 0;
-        switch (d->kind) {
-        case KIND_GAIN_Q16:
+        /* The format's own limits only: the range is ht_init's verdict (the
+         * same table), reported with the bounds by the tool. */
+        switch (d->fmt) {
+        case FMT_Q16:
             if (ht_decimal_round(value, strlen(value), 65536u, INT32_MIN, INT32_MAX, &fixed) != 0) {
                 (void)snprintf(msg, size, "--param %s: %s does not fit Q16 [-32768, 32767.99998]",
                                d->name, shown);
                 return -1;
             }
-            *q16_field(p, d->id) = (q16_t)fixed;
             break;
-        case KIND_SPEED_CM_S:
-            if (ht_decimal_round(value, strlen(value), 100u, INT32_MIN, INT32_MAX, &fixed) != 0) {
-                (void)snprintf(msg, size, "--param %s: %s m/s does not fit int32 cm/s", d->name,
-                               shown);
+        case FMT_CM32:
+        case FMT_CM16: {
+            const long lo = (d->fmt == FMT_CM32) ? (long)INT32_MIN : (long)INT16_MIN;
+            const long hi = (d->fmt == FMT_CM32) ? (long)INT32_MAX : (long)INT16_MAX;
+            if (ht_decimal_round(value, strlen(value), 100u, lo, hi, &fixed) != 0) {
+                (void)snprintf(msg, size, "--param %s: %s %s does not fit %s cm/s", d->name, shown,
+                               d->unit, (d->fmt == FMT_CM32) ? "int32" : "int16");
                 return -1;
             }
-            *speed_field(p, d->id) = (int32_t)fixed;
             break;
-        case KIND_FLAG:
-            if (v != 0.0 && v != 1.0) {
-                (void)snprintf(msg, size, "--param %s: \"%s\" is not 0 or 1", d->name, shown);
+        }
+        default: /* FMT_U8, FMT_U16 */
+            if (parse_integer(d, value, v, &fixed, msg, size) != 0) {
                 return -1;
             }
-            p->schedule = v != 0.0 ? 1u : 0u;
-            break;
-        default:
             break;
         }
     }
+    set_raw(p, d->id, fixed);
     if (id != NULL) {
         *id = d->id;
     }
     return 0;
 }
 
-/* The value of d's field in *p, in --param units. */
-static void format_desc_value(const param_desc_t *d, const ht_params_t *p, char *buf, size_t size)
+/* A stored value in --param units ("1.5", "15", "earth"). */
+static void format_raw(const param_desc_t *d, long raw, char *buf, size_t size)
 {
-    ht_params_t copy = *p; /* the field accessors take a non-const pointer */
-    switch (d->kind) {
-    case KIND_GAIN_Q16:
-        (void)snprintf(buf, size, "%.6g", (double)*q16_field(&copy, d->id) / 65536.0);
-        break;
-    case KIND_SPEED_CM_S:
-        (void)snprintf(buf, size, "%.6g", (double)*speed_field(&copy, d->id) / 100.0);
-        break;
-    case KIND_FLAG:
-        (void)snprintf(buf, size, "%u", (unsigned)copy.schedule);
-        break;
-    default:
-        if (copy.pitch_mode == (uint8_t)HT_PITCH_EARTH_FRAME) {
-            (void)snprintf(buf, size, "earth");
-        } else if (copy.pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) {
-            (void)snprintf(buf, size, "cross");
-        } else {
-            (void)snprintf(buf, size, "%u", (unsigned)copy.pitch_mode);
-        }
-        break;
+    const ht_param_info_t *info = ht_param_info(d->id);
+    if (d->id == HT_P_PITCH_MODE && raw == (long)HT_PITCH_EARTH_FRAME) {
+        (void)snprintf(buf, size, "earth");
+    } else if (d->id == HT_P_PITCH_MODE && raw == (long)HT_PITCH_TILT_CROSS) {
+        (void)snprintf(buf, size, "cross");
+    } else if (info->scale == 1) {
+        (void)snprintf(buf, size, "%ld", raw);
+    } else {
+        (void)snprintf(buf, size, "%.6g", (double)raw / (double)info->scale);
     }
 }
 
@@ -224,7 +212,25 @@ int ht_param_format_value(const ht_params_t *p, ht_param_id_t id, char *buf, siz
 {
     for (size_t i = 0; i < N_PARAMS; i++) {
         if (params[i].id == id) {
-            format_desc_value(&params[i], p, buf, size);
+            format_raw(&params[i], get_raw(p, id), buf, size);
+            return 0;
+        }
+    }
+    (void)snprintf(buf, size, "?");
+    return -1;
+}
+
+int ht_param_format_range(ht_param_id_t id, char *buf, size_t size)
+{
+    for (size_t i = 0; i < N_PARAMS; i++) {
+        if (params[i].id == id) {
+            const ht_param_info_t *info = ht_param_info(id);
+            char lo[24];
+            char hi[24];
+            format_raw(&params[i], (long)info->min_raw, lo, sizeof lo);
+            format_raw(&params[i], (long)info->max_raw, hi, sizeof hi);
+            (void)snprintf(buf, size, "%s in [%s, %s] %s (%s)", params[i].name, lo, hi,
+                           params[i].unit, info->format);
             return 0;
         }
     }
@@ -236,7 +242,16 @@ void ht_param_print_table(FILE *out, const ht_params_t *p)
 {
     for (size_t i = 0; i < N_PARAMS; i++) {
         char value[32];
-        format_desc_value(&params[i], p, value, sizeof value);
+        format_raw(&params[i], get_raw(p, params[i].id), value, sizeof value);
         (void)fprintf(out, "  %-13s %-20s default %s\n", params[i].name, params[i].unit, value);
+    }
+}
+
+void ht_param_print_ranges(FILE *out)
+{
+    for (size_t i = 0; i < N_PARAMS; i++) {
+        char range[96];
+        (void)ht_param_format_range(params[i].id, range, sizeof range);
+        (void)fprintf(out, "  %s\n", range);
     }
 }

@@ -1,8 +1,9 @@
 /*
  * param_parse.h - "--param NAME=VALUE" to ht_params_t for ht_replay.
  *
- * Names and units are those of docs/control-law.md's parameter table, plus
- * pitch_mode:
+ * Names, units, formats and ranges are those of the parameter table
+ * (include/helical/params.def, the law's rows; docs/control-law.md's
+ * parameter table plus pitch_mode):
  *   kp_*, kff_*, kd_* (aileron, elevator, rudder)  gain, stored as Q16
  *   v_ref, v_min                                   m/s, stored as cm/s
  *   schedule                                       0 or 1
@@ -10,9 +11,11 @@
  *   pitch_mode                                     earth | cross | 0 | 1
  *
  * This layer checks the syntax and that a value fits the field's format
- * (a gain of 1e6 does not fit Q16). Whether a value is allowed by the law
- * (a gain in [0, 64], v_min >= 1 m/s, ...) is decided by ht_init alone, so
- * that the tool never disagrees with the library about the ranges.
+ * (a gain of 1e6 does not fit Q16; an integer field takes an integer of its
+ * range). Whether a value is allowed by the law (a gain in [0, 64], v_min >=
+ * 1 m/s, the joint limits) is decided by ht_init, whose per-field ranges are
+ * the same table's, so the tool and the library cannot disagree; the tool
+ * quotes the table's bounds when ht_init refuses (ht_param_format_range).
  */
 #ifndef HT_REPLAY_PARAM_PARSE_H
 #define HT_REPLAY_PARAM_PARSE_H
@@ -49,5 +52,12 @@ void ht_param_show_text(const char *text, char *buf, size_t size);
 /* Print one line per parameter: name, unit and the value in *p, in the
  * units of --param (used by --help with the defaults). */
 void ht_param_print_table(FILE *out, const ht_params_t *p);
+
+/* "kp_aileron in [0, 64] per unit error (Q16)": the table's range of id in
+ * --param units. Returns 0, or -1 (and "?") if id is not a parameter. */
+int ht_param_format_range(ht_param_id_t id, char *buf, size_t size);
+
+/* Print one such line per parameter (--help). */
+void ht_param_print_ranges(FILE *out);
 
 #endif /* HT_REPLAY_PARAM_PARSE_H */

@@ -1,0 +1,170 @@
+"""The parameter table (include/helical/params.def) as the harness reads it,
+against the table compiled into the board library, and every Python place
+that takes names, defaults, bounds or frame layouts from it.
+
+Worked values (the formats of params.def): kp_aileron max 64 -> Q16
+4194304; v_ref 327.67 m/s -> 32767 cm/s; max_tilt min 2^-16 -> 1;
+gyro_limit default 34.9 rad/s -> 2287206 (34.9 * 65536 = 2287206.4);
+gps_min_speed 3 m/s -> 300; the SIL's gyro_bias_max_deg_s bound is
+1 rad/s = 57.2958 deg/s.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from helical_sil import params, pil
+from helical_sil.board import Board, BoardError, compiled_table
+from helical_sil.scenario import (ESTIMATOR_KEYS, GAIN_BOUNDS, GAIN_DEFAULTS, LAW_PARAMS,
+                                  ScenarioError, load_scenario)
+
+SIL_DIR = Path(__file__).resolve().parents[1]
+
+
+def test_the_table_parses_with_the_worked_values() -> None:
+    assert [p.name for p in params.LAW][:3] == ["kp_aileron", "kp_elevator", "kp_rudder"]
+    assert len(params.LAW) >= 14 and len(params.ESTIMATOR) >= 12  # and any row added since
+    kp = params.LAW_BY_NAME["kp_aileron"]
+    assert (kp.min_raw, kp.max_raw, kp.default_raw, kp.fmt.name) == (0, 4194304, 65536, "Q16")
+    v = params.LAW_BY_NAME["v_ref"]
+    assert (v.c_field, v.unit, v.max_raw, v.default_raw) == ("v_ref_cm_s", "m/s", 32767, 1500)
+    assert params.LAW_BY_NAME["max_tilt"].min_raw == 1
+    assert params.ESTIMATOR_BY_NAME["gyro_limit"].default_raw == 2287206
+    assert params.ESTIMATOR_BY_NAME["gps_min_speed"].default_raw == 300
+
+
+def test_python_reads_the_table_as_the_compiler_did(board_lib: str) -> None:
+    """Every row: name, unit, format, stored bounds, default, scale and width
+    as compiled into the board library (sil_param_info) - the two readers of
+    params.def agree, and a row the C side lacks (or adds) fails here."""
+    c = compiled_table(board_lib)
+    for group, rows in (("LAW", params.LAW), ("DCM", params.ESTIMATOR)):
+        assert [r["name"] for r in c[group]] == [p.name for p in rows]
+        for r, p in zip(c[group], rows):
+            assert r["unit"] == p.unit and r["format"] == p.fmt.name, p.name
+            assert r["description"] == p.description, p.name
+            assert (r["min_raw"], r["max_raw"], r["default_raw"]) == \
+                (p.min_raw, p.max_raw, p.default_raw), p.name
+            assert r["scale"] == int(p.fmt.scale) and r["bytes"] == p.fmt.nbytes, p.name
+
+
+def _config(**law: float) -> dict[str, object]:
+    """A board config: the holds as test_run's, the law's table defaults with
+    the given overrides."""
+    cfg: dict[str, object] = {name: 0.0 for name in (
+        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
+        "alt_integral_upright", "alt_integral_inverted", "spd_kp_throttle_per_m_s",
+        "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch", "spd_throttle_min",
+        "trim_aileron", "trim_elevator", "trim_rudder")}
+    cfg.update(alt_max_pitch=0.3, alt_max_integral_pitch=0.2, alt_max_error_m=100.0,
+               alt_integral_band_m=10.0, spd_throttle_trim=0.5, spd_throttle_max=1.0,
+               spd_max_integral_throttle=0.5, control_rate_hz=40, law=law)
+    return cfg
+
+
+def test_the_board_takes_the_table_defaults_and_quotes_the_bounds(board_lib: str) -> None:
+    Board(_config(), board_lib)  # every default is legal
+    with pytest.raises(BoardError, match=r"kp_rudder = 65 is outside \[0, 64\] "
+                                         r"\(per unit error, Q16\)"):
+        Board(_config(kp_rudder=65.0), board_lib)
+    with pytest.raises(BoardError, match=r"v_min = 0\.5 is outside \[1, 327\.67\] "
+                                         r"\(m/s, int32 x100\)"):
+        Board(_config(v_min=0.5), board_lib)
+    with pytest.raises(BoardError, match=r"schedule = 0\.5 is not a whole number"):
+        Board(_config(schedule=0.5), board_lib)
+    cfg = _config()
+    cfg["estimator"] = {"gps_latency": 501.0}
+    with pytest.raises(BoardError, match=r"estimator\.gps_latency = 501 is outside \[0, 500\] "
+                                         r"\(ms, uint16\)"):
+        Board(cfg, board_lib)
+    cfg["estimator"] = {"bogus": 1.0}
+    with pytest.raises(BoardError, match="unknown parameter 'bogus'"):
+        Board(cfg, board_lib)
+    # the edges themselves are accepted
+    cfg["estimator"] = {"gps_latency": 500.0, "accel_band": 2.0 ** -16, "kp_yaw": 16.0}
+    Board(cfg, board_lib)
+    Board(_config(max_tilt=8.0, kp_aileron=64.0), board_lib)
+
+
+def test_the_scenario_takes_names_defaults_and_bounds_from_the_table() -> None:
+    assert LAW_PARAMS == tuple(p.name for p in params.LAW if p.name != "pitch_mode")
+    for p in params.LAW:
+        if p.name in LAW_PARAMS:
+            assert GAIN_DEFAULTS[p.name] == p.default
+            assert GAIN_BOUNDS[p.name] == (p.min, p.max)
+    # [estimator] keys: the table's rows the SIL does not derive, older spellings kept
+    assert ESTIMATOR_KEYS["kp_rollpitch"] == ("kp_rollpitch", 1.0)
+    assert ESTIMATOR_KEYS["gps_latency_s"] == ("gps_latency", 1000.0)
+    assert ESTIMATOR_KEYS["gyro_bias_max_deg_s"] == ("gyro_bias_max", math.pi / 180.0)
+    assert not {"imu_rate_hz", "gyro_limit", "accel_limit"} & set(ESTIMATOR_KEYS)
+
+
+def _scenario(tmp_path: Path, extra: str) -> Path:
+    text = (SIL_DIR / "scenarios" / "pil" / "default_short.toml").read_text()
+    p = tmp_path / "s.toml"
+    p.write_text(text + "\n" + extra)
+    return p
+
+
+@pytest.mark.parametrize("extra,message", [
+    ("[gains]\nkp_aileron = 65",
+     "'gains.kp_aileron' = 65 is outside [0, 64] (per unit error, Q16)"),
+    ("[gains]\nmax_tilt = 0",
+     "'gains.max_tilt' = 0 is outside [1.52588e-05, 8] (tilt ratio, Q16)"),
+    ("[gains]\nv_ref = 400",
+     "'gains.v_ref' = 400 is outside [1, 327.67] (m/s, int32 x100)"),
+    ("[estimator]\nkp_yaw = 17",
+     "'estimator.kp_yaw' = 17 is outside [0, 16] (1/s, Q16)"),
+    ("[estimator]\ngps_latency_s = 0.6",
+     "'estimator.gps_latency_s' = 0.6 is outside [0, 0.5] (s; the table's gps_latency in "
+     "[0, 500] (ms, uint16))"),
+    ("[estimator]\ncentripetal = 1.5", "'estimator.centripetal' = 1.5 is not a whole number"),
+])
+def test_scenario_errors_quote_the_tables_bounds(tmp_path: Path, extra: str,
+                                                 message: str) -> None:
+    text = (SIL_DIR / "scenarios" / "pil" / "default_short.toml").read_text()
+    if extra.split("\n")[0] in text:
+        pytest.skip("the base scenario already has that table")
+    with pytest.raises(ScenarioError) as e:
+        load_scenario(_scenario(tmp_path, extra))
+    assert message in str(e.value), str(e.value)
+
+
+def test_the_estimator_config_is_in_table_units(tmp_path: Path) -> None:
+    from helical_sil import sim
+    sc = load_scenario(_scenario(tmp_path, "[estimator]\ngyro_bias_max_deg_s = 10\n"
+                                           "gps_latency_s = 0.05\nkp_yaw = 1.5"))
+    est = sim.estimator_config(sc)
+    assert set(est) == set(params.ESTIMATOR_BY_NAME)
+    assert est["gyro_bias_max"] == pytest.approx(10 * math.pi / 180)
+    assert est["gps_latency"] == pytest.approx(50.0) and est["kp_yaw"] == 1.5
+    assert est["imu_rate_hz"] == sc.sim_rate_hz
+    assert est["ki_yaw"] == params.ESTIMATOR_BY_NAME["ki_yaw"].default
+
+
+def test_hil_frames_carry_every_row() -> None:
+    """A row added to the table is a field of its configuration frame."""
+    law = pil.cfg_law_payload({"control_rate_hz": 40})
+    assert law == params.payload(params.LAW, params.law_defaults())
+    off = 0
+    for p in params.LAW:  # each default at the running offset
+        raw = int.from_bytes(law[off:off + p.fmt.nbytes], "little", signed=p.fmt.signed)
+        assert raw == p.default_raw, p.name
+        off += p.fmt.nbytes
+    assert off == len(law) == pil.LEN_CFG_LAW
+
+
+def test_malformed_rows_are_refused() -> None:
+    head = "#define HT_PARAMS_LAW(X) \\\n"
+    good = 'X(A, a, a, "u", Q16, 0, 1, 0, "d")\n'
+    assert params.parse(head + good)[0].name == "a"
+    for bad, why in (('X(A, a, a, "u", Q17, 0, 1, 0, "d")', "unknown format"),
+                     ('X(A, a, a, "u", Q16, 0, 1 + 1, 0, "d")', "plain decimal"),
+                     ('X(A, a, a, "u", Q16, 0, 1, 2, "d")', "default 2 outside"),
+                     ('X(A, a, a, "u", U8, 0, 300, 0, "d")', "does not fit"),
+                     ('X(A, a, a, "u", Q16, 0, 1, 0)', "9 columns")):
+        with pytest.raises(params.TableError, match=why):
+            params.parse(head + bad + "\n")
