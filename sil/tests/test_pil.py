@@ -90,7 +90,7 @@ def test_cfg_law_and_cfg_est_follow_the_table() -> None:
     est = {"imu_rate_hz": 120, "gyro_bias_max": 0.1, "gps_min_speed": -1.5, "gps_latency": 80}
     p = pil.cfg_est_payload({"control_rate_hz": 40, "estimator": est})
     assert int.from_bytes(p[0:2], "little") == 120
-    assert int.from_bytes(p[2:6], "little", signed=True) == 13107  # kp_rollpitch 0.2
+    assert int.from_bytes(p[2:6], "little", signed=True) == 26214  # kp_rollpitch 0.4
     assert int.from_bytes(p[18:22], "little", signed=True) == 6554  # 0.1 rad/s
     assert int.from_bytes(p[34:36], "little", signed=True) == -150
     assert p[36] == 2 and int.from_bytes(p[37:39], "little") == 80
