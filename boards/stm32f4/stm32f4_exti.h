@@ -40,13 +40,13 @@ typedef struct {
 } stm32_exti_t;
 _Static_assert((size_t)offsetof(stm32_exti_t, PR) == 0x14u, "EXTI PR offset");
 
-#define STM32_SYSCFG_BASE      0x40013800u
-#define STM32_EXTI_BASE        0x40013C00u
-#define RCC_APB2ENR_SYSCFGEN   0x4000u /* bit 14 */
-#define STM32_EXTI4_IRQN       10u
-#define STM32_EXTI_PORT_A      0u
-#define STM32_EXTI_PORT_C      2u
-#define STM32_EXTI_LINES       16u
+#define STM32_SYSCFG_BASE    0x40013800u
+#define STM32_EXTI_BASE      0x40013C00u
+#define RCC_APB2ENR_SYSCFGEN 0x4000u /* bit 14 */
+#define STM32_EXTI4_IRQN     10u
+#define STM32_EXTI_PORT_A    0u
+#define STM32_EXTI_PORT_C    2u
+#define STM32_EXTI_LINES     16u
 
 typedef enum { STM32_EXTI_RISING = 0, STM32_EXTI_FALLING = 1 } stm32_exti_edge_t;
 

@@ -25,8 +25,8 @@ static int map_ok(const stm32_pwm_map_out_t map[], uint8_t count)
 {
     for (uint8_t i = 0u; i < count; ++i) {
         const uint32_t clk = map[i].timer_clk_hz;
-        if (map[i].tim == NULL || map[i].channel < 1u || map[i].channel > 4u ||
-            clk < COUNT_HZ || (clk % COUNT_HZ) != 0u || (clk / COUNT_HZ) > 65536u) {
+        if (map[i].tim == NULL || map[i].channel < 1u || map[i].channel > 4u || clk < COUNT_HZ ||
+            (clk % COUNT_HZ) != 0u || (clk / COUNT_HZ) > 65536u) {
             return 0;
         }
     }

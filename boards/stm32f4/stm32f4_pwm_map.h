@@ -59,8 +59,7 @@ stm32_pwm_map_status_t stm32_pwm_map_init(stm32_pwm_map_t *p, const stm32_pwm_ma
 
 /* Stage a pulse: CCR written with the timer's update event held off
  * (CR1.UDIS), so it reaches the pin at the first frame after commit. */
-stm32_pwm_map_status_t stm32_pwm_map_set_us(stm32_pwm_map_t *p, uint8_t output,
-                                            uint16_t pulse_us);
+stm32_pwm_map_status_t stm32_pwm_map_set_us(stm32_pwm_map_t *p, uint8_t output, uint16_t pulse_us);
 
 /* Release the update events of every timer (UDIS cleared). */
 void stm32_pwm_map_commit(stm32_pwm_map_t *p);

@@ -28,8 +28,8 @@ static void test_pc4_rising(void)
     syscfg.EXTICR[1] = 0xFFFFu; /* other lines' ports kept */
     exti.FTSR = 0x30u;
     exti.IMR = 0x1u;
-    TEST_ASSERT_EQUAL_INT(0, stm32_exti_route(&syscfg, &exti, STM32_EXTI_PORT_C, 4u,
-                                              STM32_EXTI_RISING));
+    TEST_ASSERT_EQUAL_INT(
+        0, stm32_exti_route(&syscfg, &exti, STM32_EXTI_PORT_C, 4u, STM32_EXTI_RISING));
     TEST_ASSERT_EQUAL_HEX32(0xFFF2u, syscfg.EXTICR[1]);
     TEST_ASSERT_EQUAL_HEX32(0x0u, syscfg.EXTICR[0]);
     TEST_ASSERT_EQUAL_HEX32(0x10u, exti.RTSR);

@@ -31,10 +31,10 @@ void setUp(void)
     memset((void *)&tim8, 0, sizeof tim8);
     memset((void *)&tim12, 0, sizeof tim12);
     memset(&pwm, 0, sizeof pwm);
-    const stm32_pwm_map_out_t m[8] = {
-        {&tim4, 84000000u, 2u, 0u},  {&tim4, 84000000u, 1u, 0u},  {&tim3, 84000000u, 3u, 0u},
-        {&tim3, 84000000u, 4u, 0u},  {&tim8, 168000000u, 3u, 1u}, {&tim8, 168000000u, 4u, 1u},
-        {&tim12, 84000000u, 1u, 0u}, {&tim12, 84000000u, 2u, 0u}};
+    const stm32_pwm_map_out_t m[8] = {{&tim4, 84000000u, 2u, 0u},  {&tim4, 84000000u, 1u, 0u},
+                                      {&tim3, 84000000u, 3u, 0u},  {&tim3, 84000000u, 4u, 0u},
+                                      {&tim8, 168000000u, 3u, 1u}, {&tim8, 168000000u, 4u, 1u},
+                                      {&tim12, 84000000u, 1u, 0u}, {&tim12, 84000000u, 2u, 0u}};
     memcpy(map, m, sizeof map);
 }
 
