@@ -37,6 +37,11 @@ static uint32_t next_tick_ms, tick_frac;
 static uint16_t tick_ms_whole, tick_hz;
 static uint32_t ticks, late_total;
 static uint8_t failsafe_now;
+/* Tick budget, in SysTick counts (= HCLK cycles on the board; see
+ * matek_cycles): the worst time from board_rc_read_us's return to the next
+ * board_wait_tick (the firmware step and the pulses), and of the board's
+ * own reads (board_sensors_read + board_rc_read_us) in one tick. */
+static uint32_t cyc_rc_out, cyc_io_start, cyc_io, step_max_cyc, io_max_cyc;
 
 /* Named by the vector table (startup_stm32f405.c), which declares it weak. */
 void SysTick_Handler(void);
@@ -71,6 +76,38 @@ uint32_t matek_time_us(void)
         }
     }
     return ms_count * 1000u;
+}
+
+uint32_t matek_cycles(void)
+{
+    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SysTick register block address
+    const stm32_systick_t *const st = (const stm32_systick_t *)STM32_SYSTICK_BASE;
+    for (unsigned tries = 0u; tries < 3u; ++tries) {
+        const uint32_t m1 = ms_count;
+        const uint32_t val = st->VAL & SYSTICK_LOAD_MAX;
+        const uint32_t m2 = ms_count;
+        if (m1 == m2 && val <= systick_load) {
+            return m1 * (systick_load + 1u) + (systick_load - val);
+        }
+    }
+    return ms_count * (systick_load + 1u);
+}
+
+void matek_budget_mark(uint8_t where)
+{
+    const uint32_t now = matek_cycles();
+    if (where == MATEK_MARK_SENSORS_IN) {
+        cyc_io_start = now;
+        cyc_io = 0u;
+    } else if (where == MATEK_MARK_SENSORS_OUT) {
+        cyc_io = now - cyc_io_start;
+    } else if (where == MATEK_MARK_RC_IN) {
+        cyc_io_start = now;
+    } else {
+        cyc_io += now - cyc_io_start;
+        cyc_rc_out = now;
+        io_max_cyc = (cyc_io > io_max_cyc) ? cyc_io : io_max_cyc;
+    }
 }
 
 void matek_delay_us(void *ctx, uint32_t us)
@@ -276,6 +313,10 @@ static void heartbeat(void)
     matek_console_put_u32(matek_sensors_imu_samples());
     matek_console_puts(" fs ");
     matek_console_put_u32(failsafe_now);
+    matek_console_puts(" step_max_cyc ");
+    matek_console_put_u32(step_max_cyc);
+    matek_console_puts(" io_max_cyc ");
+    matek_console_put_u32(io_max_cyc);
     matek_console_puts(" servo_us");
     for (uint8_t i = 0u; i < MATEK_SERVOS; ++i) {
         matek_console_puts(" ");
@@ -286,6 +327,10 @@ static void heartbeat(void)
 
 uint16_t board_wait_tick(void)
 {
+    if (cyc_rc_out != 0u) {
+        const uint32_t step = matek_cycles() - cyc_rc_out;
+        step_max_cyc = (step > step_max_cyc) ? step : step_max_cyc;
+    }
     for (;;) {
         matek_sensors_poll();
         matek_rc_poll();

@@ -32,6 +32,13 @@
 const stm32_clocks_t *matek_clocks(void);
 uint32_t matek_time_ms(void);
 uint32_t matek_time_us(void);
+/* SysTick counts since boot (HCLK cycles on the board), for the tick budget. */
+uint32_t matek_cycles(void);
+#define MATEK_MARK_SENSORS_IN  0u
+#define MATEK_MARK_SENSORS_OUT 1u
+#define MATEK_MARK_RC_IN       2u
+#define MATEK_MARK_RC_OUT      3u
+void matek_budget_mark(uint8_t where);
 /* imu_spi_bus_t.delay_us: waits on the time base, at most us * SYSCLK MHz loops. */
 void matek_delay_us(void *ctx, uint32_t us);
 void matek_nvic_enable(uint32_t irqn);

@@ -142,6 +142,7 @@ board_status_t board_rc_read_us(uint16_t pulse_us[], uint8_t count)
     if (count > BOARD_MAX_RC_INPUTS) {
         return BOARD_ERR_RANGE;
     }
+    matek_budget_mark(MATEK_MARK_RC_IN);
     const board_status_t st = rc_read(pulse_us, count);
     const uint32_t now = matek_time_ms();
     if (st == BOARD_OK) {
@@ -159,5 +160,6 @@ board_status_t board_rc_read_us(uint16_t pulse_us[], uint8_t count)
     } else {
         /* no change to report */
     }
+    matek_budget_mark(MATEK_MARK_RC_OUT);
     return st;
 }

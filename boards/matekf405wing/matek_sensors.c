@@ -247,6 +247,7 @@ board_status_t board_sensors_read(board_sensors_t *out)
     if (out == NULL) {
         return BOARD_ERR_NULL;
     }
+    matek_budget_mark(MATEK_MARK_SENSORS_IN);
     out->imu_fresh = (uint8_t)((imu_decimate_take(&decim, &out->imu) != 0u) ? 1u : 0u);
     if (imu.ready == 0u && (reads % RETRY_TICKS) == (RETRY_TICKS - 1u)) {
         imu_start();
@@ -279,6 +280,7 @@ board_status_t board_sensors_read(board_sensors_t *out)
         }
     }
     ++reads;
+    matek_budget_mark(MATEK_MARK_SENSORS_OUT);
     const int any = (out->imu_fresh | out->gps.fresh | out->baro_fresh | out->airspeed_fresh) != 0u;
     return any ? BOARD_OK : BOARD_ERR_NO_DATA;
 }
