@@ -49,7 +49,7 @@ if [ -z "$first" ] || [ "$last" -le "$first" ]; then
     echo "qemu_boot: tick count not rising ($first -> $last)"
     status=1
 fi
-if ! grep '^hb ticks ' "$log" | tail -1 | grep -q 'fs 2 servo_us 1500 1500 1000 1500 '; then
+if ! grep '^hb ticks ' "$log" | tail -1 | grep -Eq 'fs 2 .*servo_us 1500 1500 1000 1500 '; then
     echo "qemu_boot: servos not at their failsafe pulses:"
     grep '^hb ticks ' "$log" | tail -1
     status=1
