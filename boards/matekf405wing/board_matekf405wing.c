@@ -60,37 +60,53 @@ uint32_t matek_time_ms(void)
     return ms_count;
 }
 
-uint32_t matek_time_us(void)
+/*
+ * The time base's two parts: whole ms (the interrupt's count) and SysTick
+ * counts into the current ms. ms, then the counter, then ms again: equal ms
+ * means the interrupt did not run in between. The counter may still have
+ * wrapped with its interrupt not yet taken (a few cycles' window): then the
+ * SysTick exception is pending (ICSR.PENDSTSET, ARMv7-M B3.2.4) and the
+ * counter has just reloaded (above half the period), so the ms is one more.
+ */
+#define SCB_ICSR_ADDR      0xE000ED04u
+#define SCB_ICSR_PENDSTSET 0x04000000u /* bit 26 */
+static void time_parts(uint32_t *ms, uint32_t *sub)
 {
     // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SysTick register block address
     const stm32_systick_t *const st = (const stm32_systick_t *)STM32_SYSTICK_BASE;
-    const uint32_t per_us = clocks.hclk_hz / 1000000u;
-    /* ms, then the counter, then ms again: equal ms means no wrap between
-     * (the SysTick interrupt would have run at once and changed it). */
+    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SCB ICSR register address
+    const volatile uint32_t *const icsr = (const volatile uint32_t *)SCB_ICSR_ADDR;
     for (unsigned tries = 0u; tries < 3u; ++tries) {
         const uint32_t m1 = ms_count;
         const uint32_t val = st->VAL & SYSTICK_LOAD_MAX;
+        const uint32_t pending = *icsr & SCB_ICSR_PENDSTSET;
         const uint32_t m2 = ms_count;
-        if (m1 == m2 && val <= systick_load && per_us != 0u) {
-            return m1 * 1000u + (systick_load - val) / per_us;
+        if (m1 == m2 && val <= systick_load) {
+            const uint32_t wrapped = (pending != 0u && val > systick_load / 2u) ? 1u : 0u;
+            *ms = m1 + wrapped;
+            *sub = systick_load - val;
+            return;
         }
     }
-    return ms_count * 1000u;
+    *ms = ms_count;
+    *sub = 0u;
+}
+
+uint32_t matek_time_us(void)
+{
+    const uint32_t per_us = clocks.hclk_hz / 1000000u;
+    uint32_t ms = 0u;
+    uint32_t sub = 0u;
+    time_parts(&ms, &sub);
+    return ms * 1000u + ((per_us != 0u) ? (sub / per_us) : 0u);
 }
 
 uint32_t matek_cycles(void)
 {
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SysTick register block address
-    const stm32_systick_t *const st = (const stm32_systick_t *)STM32_SYSTICK_BASE;
-    for (unsigned tries = 0u; tries < 3u; ++tries) {
-        const uint32_t m1 = ms_count;
-        const uint32_t val = st->VAL & SYSTICK_LOAD_MAX;
-        const uint32_t m2 = ms_count;
-        if (m1 == m2 && val <= systick_load) {
-            return m1 * (systick_load + 1u) + (systick_load - val);
-        }
-    }
-    return ms_count * (systick_load + 1u);
+    uint32_t ms = 0u;
+    uint32_t sub = 0u;
+    time_parts(&ms, &sub);
+    return ms * (systick_load + 1u) + sub;
 }
 
 void matek_budget_mark(uint8_t where)
@@ -106,7 +122,11 @@ void matek_budget_mark(uint8_t where)
     } else {
         cyc_io += now - cyc_io_start;
         cyc_rc_out = now;
-        io_max_cyc = (cyc_io > io_max_cyc) ? cyc_io : io_max_cyc;
+        /* a "negative" span is a time-base glitch (an emulator's late
+         * SysTick interrupt): not a measurement */
+        if (cyc_io < 0x80000000u && cyc_io > io_max_cyc) {
+            io_max_cyc = cyc_io;
+        }
     }
 }
 
@@ -329,7 +349,9 @@ uint16_t board_wait_tick(void)
 {
     if (cyc_rc_out != 0u) {
         const uint32_t step = matek_cycles() - cyc_rc_out;
-        step_max_cyc = (step > step_max_cyc) ? step : step_max_cyc;
+        if (step < 0x80000000u && step > step_max_cyc) {
+            step_max_cyc = step;
+        }
     }
     for (;;) {
         matek_sensors_poll();
