@@ -5,6 +5,7 @@
  */
 #include "helical/board.h"
 
+#include "fw_board_config.h"
 #include "fw_step.h"
 
 /* Pulses to the servos: staged, then committed together. */
@@ -36,6 +37,12 @@ static board_failsafe_t failsafe_reason(const fw_t *fw, const fw_output_t *o)
     return (o->modes.failsafe != 0u) ? BOARD_FS_RC_LOST : BOARD_FS_NONE;
 }
 
+/* The default: the defaults fly (a board with a parameter store overrides it). */
+__attribute__((weak)) void fw_board_config(fw_config_t *cfg)
+{
+    (void)cfg;
+}
+
 // cppcheck-suppress misra-c2012-8.6 ; FP: one main per image, hil_main.c is another program
 int main(void)
 {
@@ -45,6 +52,7 @@ int main(void)
     static fw_inputs_t in;
     static fw_output_t out;
     fw_config_default(&config);
+    fw_board_config(&config);
     board_config_t board = BOARD_CONFIG_DEFAULT;
     board.control_hz = config.dcm.imu_rate_hz; /* one board tick per IMU sample */
     if (board_init(&board) != BOARD_OK) {

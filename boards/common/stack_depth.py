@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""stack_depth.py BUILD_DIR ROOT [ROOT...] [--limit BYTES]
+"""stack_depth.py BUILD_DIR[:DIR...] ROOT [ROOT...] [--limit BYTES] [--indirect CALLER=F1,F2]...
 
 Worst-case stack depth of each ROOT function, from the call graphs GCC
 writes with -fcallgraph-info=su (one .ci file per object, VCG format; each
@@ -10,6 +10,12 @@ call or a frame GCC marks "dynamic" (unbounded) makes the depth unknown and
 the script fail. Callees defined in no .ci file (libc's memset/memcpy, libgcc
 helpers) are listed as external and counted with frame 0: their frames are
 small leaf frames, but the report names them so nobody is misled.
+BUILD_DIR may list several directories (":"), e.g. one image's objects and
+the libraries it links, so that two images' main() are not merged.
+--indirect CALLER=F1,F2 names the functions an indirect call inside CALLER
+can reach (a bus callback, a decoder's protocol table): each such call then
+counts as the deepest of them. Names match a global or a file-static
+function ("path:f"). An indirect call without a mapping is a problem.
 Exit status: 0 when every root is known and within --limit, 1 otherwise.
 """
 import os
@@ -47,6 +53,9 @@ def resolve(name, frames):
     return None
 
 
+INDIRECT = {}  # caller title -> resolved --indirect targets
+
+
 def depth(fn, frames, kinds, edges, stack, memo, externals, problems):
     if fn in memo:
         return memo[fn]
@@ -58,7 +67,14 @@ def depth(fn, frames, kinds, edges, stack, memo, externals, problems):
     best, best_path = 0, []
     for callee in edges.get(fn, []):
         if "__indirect_call" in callee:
-            problems.append("indirect call in " + fn)
+            if fn not in INDIRECT:
+                problems.append("indirect call in " + fn)
+                continue
+            for target in INDIRECT[fn]:
+                d, p = depth(target, frames, kinds, edges, stack + [fn], memo, externals,
+                             problems)
+                if d > best:
+                    best, best_path = d, ["(indirect)"] + p
             continue
         target = resolve(callee, frames)
         if target is None:
@@ -67,7 +83,7 @@ def depth(fn, frames, kinds, edges, stack, memo, externals, problems):
         d, p = depth(target, frames, kinds, edges, stack + [fn], memo, externals, problems)
         if d > best:
             best, best_path = d, p
-    memo[fn] = (frames[fn] + best, [fn] + best_path)
+    memo[fn] = (frames[fn] + best, [fn] + [f for f in best_path if f != "(indirect)"])
     return memo[fn]
 
 
@@ -77,11 +93,16 @@ def short(title):
 
 def main(argv):
     limit = None
+    indirect = []
     args = []
     i = 1
     while i < len(argv):
         if argv[i] == "--limit":
             limit = int(argv[i + 1])
+            i += 2
+        elif argv[i] == "--indirect":
+            caller, _, targets = argv[i + 1].partition("=")
+            indirect.append((caller, targets.split(",")))
             i += 2
         else:
             args.append(argv[i])
@@ -89,11 +110,30 @@ def main(argv):
     if len(args) < 2:
         print(__doc__, file=sys.stderr)
         return 2
-    frames, kinds, edges = load(args[0])
+    frames, kinds, edges = {}, {}, {}
+    for d in args[0].split(":"):
+        f, k, e = load(d)
+        frames.update(f)
+        kinds.update(k)
+        for src, dsts in e.items():
+            edges.setdefault(src, []).extend(dsts)
     if not frames:
         print("stack_depth: no .ci files under " + args[0], file=sys.stderr)
         return 1
     status = 0
+    def titles(name):
+        return [t for t in frames if t == name or t.endswith(":" + name)]
+
+    for caller, targets in indirect:
+        resolved = []
+        for name in targets:
+            if not titles(name):
+                print("stack_depth: indirect target %s is not defined in any .ci file" % name,
+                      file=sys.stderr)
+                status = 1
+            resolved.extend(titles(name))
+        for c in titles(caller):
+            INDIRECT.setdefault(c, []).extend(resolved)
     for root in args[1:]:
         if root not in frames:
             print("stack_depth: %s is not defined in any .ci file" % root, file=sys.stderr)

@@ -27,6 +27,13 @@ void DebugMon_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void PendSV_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void USART1_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+/* Used by the Matek F405-WING image (boards/matekf405wing): the IMU's
+ * data-ready line, the receiver and GPS UARTs, the PPM timer. */
+void EXTI4_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void USART2_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void USART3_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void TIM5_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void USART6_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 
 /* 16 system exceptions (the first is the initial stack pointer) and the 82
  * STM32F405 interrupt lines (RM0090 table 61: positions 0..81). A struct
@@ -66,37 +73,51 @@ __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table 
         PendSV_Handler,
         SysTick_Handler,
     },
-    /* The flight image enables no peripheral interrupt; the HIL image enables
-     * USART1's (position 37). Any other stops in Default_Handler where a
+    /* The netduinoplus2 flight image enables no peripheral interrupt; its HIL
+     * image enables USART1's (position 37); the Matek F405-WING image also
+     * EXTI4 (10), USART2 (38), USART3 (39), TIM5 (50) and USART6 (71)
+     * (RM0090 table 61). Any other stops in Default_Handler where a
      * debugger can see it. */
     /* one entry (or four) per line, so the positions can be counted */
     // clang-format off
     {
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
+        DEFAULT_X4,        /* 0..3 */
+        Default_Handler,   /* 4 */
+        Default_Handler,   /* 5 */
+        Default_Handler,   /* 6 EXTI0 */
+        Default_Handler,   /* 7 */
+        Default_Handler,   /* 8 */
+        Default_Handler,   /* 9 */
+        EXTI4_IRQHandler,  /* 10 */
+        Default_Handler,   /* 11 */
+        DEFAULT_X4,        /* 12..15 */
+        DEFAULT_X4,        /* 16..19 */
+        DEFAULT_X4,        /* 20..23 */
+        DEFAULT_X4,        /* 24..27 */
+        DEFAULT_X4,        /* 28..31 */
+        DEFAULT_X4,        /* 32..35 */
         Default_Handler,   /* 36 */
         USART1_IRQHandler, /* 37 */
-        Default_Handler,
-        Default_Handler,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        DEFAULT_X4,
-        Default_Handler,
-        Default_Handler,
+        USART2_IRQHandler, /* 38 */
+        USART3_IRQHandler, /* 39 */
+        DEFAULT_X4,        /* 40..43 */
+        DEFAULT_X4,        /* 44..47 */
+        Default_Handler,   /* 48 */
+        Default_Handler,   /* 49 */
+        TIM5_IRQHandler,   /* 50 */
+        Default_Handler,   /* 51 */
+        DEFAULT_X4,        /* 52..55 */
+        DEFAULT_X4,        /* 56..59 */
+        DEFAULT_X4,        /* 60..63 */
+        DEFAULT_X4,        /* 64..67 */
+        Default_Handler,   /* 68 */
+        Default_Handler,   /* 69 */
+        Default_Handler,   /* 70 */
+        USART6_IRQHandler, /* 71 */
+        DEFAULT_X4,        /* 72..75 */
+        DEFAULT_X4,        /* 76..79 */
+        Default_Handler,   /* 80 */
+        Default_Handler,   /* 81 */
     },
     // clang-format on
 };

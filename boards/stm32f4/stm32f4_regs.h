@@ -30,7 +30,8 @@ typedef struct {
     volatile uint32_t ARR;       /* 0x2C auto-reload: period = ARR + 1 counts */
     volatile uint32_t RESERVED0; /* 0x30 (RCR on the advanced timers) */
     volatile uint32_t CCR[4];    /* 0x34, 0x38, 0x3C, 0x40 compare, channels 1-4 */
-    volatile uint32_t RESERVED1; /* 0x44 (BDTR on the advanced timers) */
+    volatile uint32_t BDTR;      /* 0x44 break and dead-time: TIM1/TIM8 only, reserved on
+                                    the others (RM0090 17.4.18) */
     volatile uint32_t DCR;       /* 0x48 */
     volatile uint32_t DMAR;      /* 0x4C */
     volatile uint32_t OR;        /* 0x50 option (TIM2, TIM5 only) */
@@ -42,6 +43,7 @@ _Static_assert((size_t)offsetof(stm32_tim_t, CCER) == 0x20u, "TIM CCER offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, PSC) == 0x28u, "TIM PSC offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, ARR) == 0x2Cu, "TIM ARR offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, CCR) == 0x34u, "TIM CCR1 offset");
+_Static_assert((size_t)offsetof(stm32_tim_t, BDTR) == 0x44u, "TIM1/8 BDTR offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, DCR) == 0x48u, "TIM DCR offset");
 _Static_assert((size_t)offsetof(stm32_tim_t, OR) == 0x50u, "TIM OR offset");
 

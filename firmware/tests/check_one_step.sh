@@ -3,7 +3,9 @@
 # holds -> guard -> law -> output stage is called from fw_step.o only: any
 # other object (a host: the SIL board, the HIL firmware, a main loop) that
 # references one of these functions keeps a copy of the step. Exits 1 and
-# names the object and the symbol.
+# names the object and the symbol. Run on the host objects (firmware/
+# CMakeLists.txt) and on the Matek F405-WING image's board objects, built for
+# the target (boards/matekf405wing/CMakeLists.txt: matek_one_step_*).
 nm="$1"
 shift
 chain='ht_step ht_dcm_update ht_modes_step ht_alt_hold_step_v ht_speed_hold_step ht_upset_guard_step os_compute'

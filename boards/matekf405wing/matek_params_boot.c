@@ -1,0 +1,38 @@
+/*
+ * matek_params_boot.c - the stored parameters, loaded before board_init
+ * (firmware/fw_board_config.h): the store's two slots are flash sectors 1
+ * and 2 (stm32f4_param_flash.h; the image is linked with
+ * stm32f405_params.ld so nothing else lives there). Reading needs no
+ * register access (the flash is memory mapped), so this runs before the
+ * clocks are raised; board_init prints the result on the console.
+ */
+#include "fw_board_config.h"
+#include "matek_board.h"
+#include "stm32f4_flash.h"
+#include "stm32f4_param_flash.h"
+
+/* Generous: a sector erase is 250-500 ms (and a save is not done at boot). */
+#define ERASE_SPINS   50000000u
+#define PROGRAM_SPINS 100000u
+
+static stm32_flash_t flash;
+static param_flash_t pflash;
+static matek_params_report_t report = {(uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0};
+
+void fw_board_config(fw_config_t *cfg)
+{
+    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: flash interface register block address
+    stm32_flash_regs_t *const regs = (stm32_flash_regs_t *)STM32_FLASH_REGS_BASE;
+    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: the main flash memory window
+    volatile uint32_t *const mem = (volatile uint32_t *)STM32_FLASH_MEM_BASE;
+    if (stm32_flash_init(&flash, regs, mem, ERASE_SPINS, PROGRAM_SPINS) != STM32_FLASH_OK) {
+        return;
+    }
+    stm32_param_flash_bind(&flash, &pflash);
+    matek_params_load(&pflash, cfg, &report);
+}
+
+const matek_params_report_t *matek_params_report(void)
+{
+    return &report;
+}
