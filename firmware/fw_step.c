@@ -18,6 +18,7 @@ void fw_config_default(fw_config_t *cfg)
     }
     (void)memset(cfg, 0, sizeof *cfg);
     ht_dcm_params_default(&cfg->dcm);
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
     const ht_params_t law = HT_PARAMS_DEFAULT;
     cfg->law = law;
     ht_modes_params_default(&cfg->modes);

@@ -23,7 +23,7 @@ SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
 SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}
 SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h firmware/*.h boards/stm32f4/*.h \
     boards/dspic33/*.h boards/sil/*.h)"}
-SA_INCLUDES=${SA_INCLUDES:-"include src firmware $board_dirs"}
+SA_INCLUDES=${SA_INCLUDES:-"include src firmware $board_dirs boards/devices"}
 SA_TIDY_BUILD_DIR=${SA_TIDY_BUILD_DIR:-build/host}
 SA_TIDY_CROSS_BUILD_DIR=${SA_TIDY_CROSS_BUILD_DIR:-build/stm32f4}
 

@@ -7,9 +7,6 @@
 #define GPS_UBX_BAUD_MIN 4800u
 #define GPS_UBX_BAUD_MAX 921600u
 
-/* Where a receiver may be listening: its default first after ours. */
-static const uint32_t probe_bauds[] = {9600u, 38400u, 57600u, 115200u, 230400u};
-
 static void count32(uint32_t *c)
 {
     if (*c != UINT32_MAX) {
@@ -90,11 +87,14 @@ board_status_t gps_ubx_link_init(gps_ubx_link_t *g, const gps_ubx_config_t *cfg,
     g->cfg = *c;
     g->io = *io;
     ubx_init(&g->dec);
-    g->n_probes = 0u;
-    g->probes[g->n_probes++] = c->baud;
+    /* Where a receiver may be listening: its default first after ours. */
+    static const uint32_t probe_bauds[] = {9600u, 38400u, 57600u, 115200u, 230400u};
+    g->probes[0] = c->baud;
+    g->n_probes = 1u;
     for (unsigned i = 0u; i < sizeof probe_bauds / sizeof probe_bauds[0]; ++i) {
         if (probe_bauds[i] != c->baud && g->n_probes < GPS_UBX_PROBES_MAX) {
-            g->probes[g->n_probes++] = probe_bauds[i];
+            g->probes[g->n_probes] = probe_bauds[i];
+            g->n_probes++;
         }
     }
     g->state = GPS_UBX_START;
@@ -206,7 +206,7 @@ static void on_ack(gps_ubx_link_t *g, const ubx_ack_t *a, int accepted)
     if (a->cls != UBX_CLASS_CFG || a->id != want_id) {
         return;
     }
-    if (accepted) {
+    if (accepted != 0) {
         g->ack = 1u;
     } else {
         g->ack = 2u;
@@ -257,8 +257,8 @@ static void wait_step(gps_ubx_link_t *g, uint32_t now_ms)
         }
         return;
     }
-    const int timed_out = (now_ms - g->since_ms) >= g->cfg.ack_timeout_ms;
-    if (g->ack == 0u && !timed_out) {
+    const uint8_t timed_out = ((now_ms - g->since_ms) >= g->cfg.ack_timeout_ms) ? 1u : 0u;
+    if (g->ack == 0u && timed_out == 0u) {
         return;
     }
     if (g->ack == 0u) {

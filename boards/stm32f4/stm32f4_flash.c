@@ -233,7 +233,7 @@ stm32_flash_status_t stm32_flash_program(stm32_flash_t *f, uint32_t offset, cons
     const uint32_t words = n / 4u;
     stm32_flash_status_t s = STM32_FLASH_OK;
     for (uint32_t i = 0u; i < words; ++i) {
-        wr(&f->mem[first + i], word_le(&data[4u * i]));
+        wr(&f->mem[first + i], word_le(&data[(size_t)4u * i]));
         if (!wait_idle(f, f->program_spin_limit)) {
             return STM32_FLASH_ERR_TIMEOUT; /* no CR write while BSY: it would stall the bus */
         }
@@ -248,7 +248,7 @@ stm32_flash_status_t stm32_flash_program(stm32_flash_t *f, uint32_t offset, cons
     }
     flush_dcache(f);
     for (uint32_t i = 0u; i < words; ++i) {
-        if (rd(&f->mem[first + i]) != word_le(&data[4u * i])) {
+        if (rd(&f->mem[first + i]) != word_le(&data[(size_t)4u * i])) {
             s = STM32_FLASH_ERR_VERIFY;
             break;
         }

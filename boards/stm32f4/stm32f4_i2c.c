@@ -266,7 +266,6 @@ static i2c_bus_status_t transaction(const stm32_i2c_t *d, uint8_t addr7, const u
     return receive(d, rx, nrx);
 }
 
-// cppcheck-suppress misra-c2012-8.7 ; D-8.7 (boards): public, boards may call it directly
 i2c_bus_status_t stm32_i2c_write_read(void *ctx, uint8_t addr7, const uint8_t *tx, uint16_t ntx,
                                       uint8_t *rx, uint16_t nrx)
 {

@@ -30,7 +30,8 @@ stm32_ppm_status_t stm32_ppm_init(stm32_ppm_t *p, stm32_tim_t *tim, uint8_t chan
     const uint32_t psc = timer_clk_hz / STM32_PPM_TICK_HZ - 1u;
     /* Channels 1, 2 live in CCMR1 (low, high byte), 3, 4 in CCMR2. */
     const uint32_t ccmr_shift = 8u * (ch0_32 % 2u);
-    const uint32_t ccmr_byte = (TIM_CCMR_ICF_CK_N8 << TIM_CCMR_ICF_SHIFT) | TIM_CCMR_CCS_TI;
+    const uint32_t icf = TIM_CCMR_ICF_CK_N8;
+    const uint32_t ccmr_byte = (icf << TIM_CCMR_ICF_SHIFT) | TIM_CCMR_CCS_TI;
     const uint32_t ccmr = ccmr_byte << ccmr_shift;
     uint32_t ccer = TIM_CCER_CCE(ch0);
     if (edge == STM32_PPM_FALLING) {
@@ -156,7 +157,7 @@ static void on_capture(stm32_ppm_t *p, uint16_t value, int lost_edge)
     p->last_capture = value;
     p->have_capture = 1u;
     p->wraps = 0u;
-    if (lost_edge) {
+    if (lost_edge != 0) {
         drop_frame(p, &p->overcaptures); /* the interval spans a lost edge */
         return;
     }
@@ -197,23 +198,25 @@ void stm32_ppm_isr(stm32_ppm_t *p)
          * (a flag raised since the read above stays for the next call). */
         t->SR = TIM_SR_RC_W0_BITS & ~to_clear;
     }
-    const int wrapped = (sr & TIM_SR_UIF) != 0u;
+    const uint8_t wrapped = ((sr & TIM_SR_UIF) != 0u) ? 1u : 0u;
     if ((sr & ccif) != 0u) {
         const uint32_t ccr = t->CCR[p->ch0] & 0xFFFFu; /* the read clears CCxIF */
         const uint16_t value = (uint16_t)ccr;
         /* Both pending: a capture in the lower half of the count came after
          * the wrap (the wrap is at most one handler latency old), one in the
          * upper half before it. */
-        const int wrap_first = wrapped && value < 0x8000u;
-        if (wrap_first) {
+        const uint8_t wrap_first = (wrapped != 0u && value < 0x8000u) ? 1u : 0u;
+        if (wrap_first != 0u) {
             on_wrap(p);
         }
-        on_capture(p, value, (sr & ccof) != 0u);
-        if (wrapped && !wrap_first) {
+        on_capture(p, value, ((sr & ccof) != 0u) ? 1 : 0);
+        if (wrapped != 0u && wrap_first == 0u) {
             on_wrap(p);
         }
-    } else if (wrapped) {
+    } else if (wrapped != 0u) {
         on_wrap(p);
+    } else {
+        /* neither: a spurious entry */
     }
 }
 
@@ -228,8 +231,8 @@ stm32_ppm_status_t stm32_ppm_read_us(stm32_ppm_t *p, uint16_t pulse_us[], uint8_
     uint16_t copy[STM32_PPM_MAX_CHANNELS];
     uint8_t channels = 0u;
     uint32_t seq = 0u;
-    int got = 0;
-    for (unsigned attempt = 0u; attempt < STM32_PPM_READ_TRIES && !got; ++attempt) {
+    uint8_t got = 0u;
+    for (unsigned attempt = 0u; attempt < STM32_PPM_READ_TRIES && got == 0u; ++attempt) {
         seq = p->seq;
         if ((seq & 1u) != 0u) {
             continue; /* only while the handler itself is interrupted: not on one core */
@@ -238,9 +241,9 @@ stm32_ppm_status_t stm32_ppm_read_us(stm32_ppm_t *p, uint16_t pulse_us[], uint8_
             copy[i] = p->frame_us[i];
         }
         channels = p->frame_channels;
-        got = (p->seq == seq);
+        got = (p->seq == seq) ? 1u : 0u;
     }
-    if (!got) {
+    if (got == 0u) {
         return STM32_PPM_NO_DATA;
     }
     for (uint8_t i = 0u; i < count; ++i) {
@@ -250,7 +253,7 @@ stm32_ppm_status_t stm32_ppm_read_us(stm32_ppm_t *p, uint16_t pulse_us[], uint8_
             pulse_us[i] = 0u;
         }
     }
-    const int fresh = seq != p->seq_read;
+    const stm32_ppm_status_t st = (seq != p->seq_read) ? STM32_PPM_OK : STM32_PPM_NO_DATA;
     p->seq_read = seq;
-    return fresh ? STM32_PPM_OK : STM32_PPM_NO_DATA;
+    return st;
 }

@@ -36,9 +36,12 @@ static int map_ok(const stm32_pwm_map_out_t map[], uint8_t count)
 /* PWM mode 1 with preload, in the CCMR byte of channel ch (1..4). */
 static void channel_pwm1(stm32_tim_t *t, uint8_t ch)
 {
-    const uint32_t one = (TIM_CCMR_OCM_PWM1 << TIM_CCMR_OCM_SHIFT) | TIM_CCMR_OCPE;
-    const uint32_t shift = ((ch - 1u) % 2u) * TIM_CCMR_CH_HI_SHIFT;
-    const uint32_t field = 0xFFu << shift;
+    const uint32_t ocm = TIM_CCMR_OCM_PWM1;
+    const uint32_t one = (ocm << TIM_CCMR_OCM_SHIFT) | TIM_CCMR_OCPE;
+    const uint32_t ch0 = (uint32_t)ch - 1u;
+    const uint32_t shift = (ch0 % 2u) * TIM_CCMR_CH_HI_SHIFT;
+    const uint32_t byte_mask = 0xFFu;
+    const uint32_t field = byte_mask << shift;
     if (ch <= 2u) {
         t->CCMR1 = (t->CCMR1 & ~field) | (one << shift);
     } else {
@@ -78,7 +81,8 @@ stm32_pwm_map_status_t stm32_pwm_map_init(stm32_pwm_map_t *p, const stm32_pwm_ma
     }
     for (uint8_t i = 0u; i < count; ++i) {
         stm32_tim_t *t = map[i].tim;
-        const uint8_t ch0 = (uint8_t)(map[i].channel - 1u);
+        const uint32_t ch0_32 = (uint32_t)map[i].channel - 1u;
+        const uint8_t ch0 = (uint8_t)ch0_32;
         channel_pwm1(t, map[i].channel);
         t->CCR[ch0] = start;
         t->CCER |= TIM_CCER_CCE(ch0);

@@ -77,8 +77,9 @@ _Static_assert((size_t)offsetof(stm32_tim_t, OR) == 0x50u, "TIM OR offset");
 #define TIM_CCMR_ICF_CK_N8 3u
 /* TIMx_CCER: CCxE at bit 4*(x-1); CCxP one above: for an input, 0 captures
  * rising edges, 1 falling ones (section 18.4.9) */
-#define TIM_CCER_CCE(ch0) ((uint32_t)1u << (4u * (ch0))) /* ch0 = channel - 1 */
-#define TIM_CCER_CCP(ch0) ((uint32_t)2u << (4u * (ch0)))
+#define TIM_CCER_CCE(ch0) ((uint32_t)1u << ((uint32_t)4u * (uint32_t)(ch0))) /* ch0 = channel - 1  \
+                                                                              */
+#define TIM_CCER_CCP(ch0) ((uint32_t)2u << ((uint32_t)4u * (uint32_t)(ch0)))
 /* TIMx_DIER (section 18.4.4): UIE bit 0, CCxIE bit x */
 #define TIM_DIER_UIE       (1u << 0)
 #define TIM_DIER_CCIE(ch0) ((uint32_t)2u << (ch0))

@@ -52,8 +52,8 @@ _Static_assert((size_t)offsetof(stm32_usart_regs_t, GTPR) == 0x18u, "USART GTPR 
 #define USART_CR1_TE     (1u << 3)            /* transmitter enable */
 #define USART_CR1_RXNEIE (1u << 5)            /* interrupt while RXNE or ORE is set */
 #define USART_CR1_PS     (1u << 9)            /* parity selection: 0 even, 1 odd */
-#define USART_CR1_PCE    (1u << 10)           /* parity control: the word's MSB is parity */
-#define USART_CR1_M      (1u << 12)           /* word length: 0 = 8 bits, 1 = 9 bits */
+#define USART_CR1_PCE    0x0400u              /* bit 10, parity control: the word's MSB is parity */
+#define USART_CR1_M      0x1000u              /* bit 12, word length: 0 = 8 bits, 1 = 9 bits */
 #define USART_CR1_UE     ((uint32_t)1u << 13) /* USART enable */
 
 /* USART_CR2 (section 30.6.5): STOP[1:0] at bits 13:12 - 00 one stop bit,
