@@ -9,6 +9,7 @@
  */
 #include "dcm_wind.h"
 
+#include "helical/q14.h"
 #include "q_inline.h"
 
 #define V_MAX_CM_S ((int32_t)23170)
@@ -23,17 +24,6 @@
 /* The denominator is brought below 2^17 before the division (A then has
  * 17 significant bits: W = my - A mx is within 0.02 cm/s at 20 m/s). */
 #define DEN_MAX ((int32_t)131071)
-
-static int32_t clamp_abs(int32_t x, int32_t lim)
-{
-    if (x > lim) {
-        return lim;
-    }
-    if (x < -lim) {
-        return -lim;
-    }
-    return x;
-}
 
 /* m += (x - m) * alpha (Q30); |x|, |m| < 2^30 */
 static int32_t low_pass(int32_t m, int32_t x, int32_t alpha_q30)
@@ -98,9 +88,9 @@ void dcm_wind_learn(const ht_dcm_t *d, ht_dcm_wind_t *w, const int32_t air_q8[2]
      * the turn); y: the GPS velocity; both cm/s in Q8 */
     const int32_t an = qi_mul32(air_q8[0], turn_c, 30u) + qi_mul32(air_q8[1], turn_s, 30u);
     const int32_t ae = qi_mul32(air_q8[1], turn_c, 30u) - qi_mul32(air_q8[0], turn_s, 30u);
-    const int32_t x[2] = {clamp_abs(an, V_MAX_Q8), clamp_abs(ae, V_MAX_Q8)};
-    const int32_t y[2] = {clamp_abs(gps_cm_s[0], V_MAX_CM_S) * 256,
-                          clamp_abs(gps_cm_s[1], V_MAX_CM_S) * 256};
+    const int32_t x[2] = {q_clamp32(an, -V_MAX_Q8, V_MAX_Q8), q_clamp32(ae, -V_MAX_Q8, V_MAX_Q8)};
+    const int32_t y[2] = {q_clamp32(gps_cm_s[0], -V_MAX_CM_S, V_MAX_CM_S) * 256,
+                          q_clamp32(gps_cm_s[1], -V_MAX_CM_S, V_MAX_CM_S) * 256};
     /* this solution's moments in (cm/s)^2: Q8 * Q8 / 2^16, each product
      * <= 23170^2 < 2^29 */
     const int32_t xx = qi_mul32(x[0], x[0], 16u) + qi_mul32(x[1], x[1], 16u);
@@ -159,6 +149,6 @@ void dcm_wind_learn(const ht_dcm_t *d, ht_dcm_wind_t *w, const int32_t air_q8[2]
 void dcm_wind_through_air(const ht_dcm_wind_t *w, const int32_t gps_cm_s[2], int32_t out_q8[2])
 {
     for (unsigned i = 0u; i < 2u; i++) {
-        out_q8[i] = (clamp_abs(gps_cm_s[i], COURSE_MAX_CM_S) * 256) - w->w_q8[i];
+        out_q8[i] = (q_clamp32(gps_cm_s[i], -COURSE_MAX_CM_S, COURSE_MAX_CM_S) * 256) - w->w_q8[i];
     }
 }

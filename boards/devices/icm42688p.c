@@ -107,17 +107,7 @@ imu_status_t icm42688p_read_raw(const imu_spi_bus_t *bus, int16_t accel[3], int1
     if (st != IMU_OK) {
         return st;
     }
-    uint8_t all_00 = 1u;
-    uint8_t all_ff = 1u;
-    for (uint8_t i = 0u; i < ICM42688P_BURST_BYTES; ++i) {
-        if (b[i] != 0x00u) {
-            all_00 = 0u;
-        }
-        if (b[i] != 0xFFu) {
-            all_ff = 0u;
-        }
-    }
-    if (all_00 || all_ff) {
+    if (imu_burst_is_blank(b, ICM42688P_BURST_BYTES) != 0u) {
         return IMU_ERR_DATA;
     }
     /* DS 14.x: TEMP_DATA1/0, ACCEL_DATA_X1 .. GYRO_DATA_Z0, high byte first

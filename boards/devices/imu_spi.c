@@ -111,6 +111,21 @@ imu_status_t imu_spi_set_clock(const imu_spi_bus_t *bus, uint32_t max_hz)
     return IMU_OK;
 }
 
+uint8_t imu_burst_is_blank(const uint8_t *b, uint8_t n)
+{
+    uint8_t all_00 = 1u;
+    uint8_t all_ff = 1u;
+    for (uint8_t i = 0u; i < n; ++i) {
+        if (b[i] != 0x00u) {
+            all_00 = 0u;
+        }
+        if (b[i] != 0xFFu) {
+            all_ff = 0u;
+        }
+    }
+    return ((all_00 != 0u) || (all_ff != 0u)) ? 1u : 0u;
+}
+
 int16_t imu_be16(const uint8_t *p)
 {
     const uint32_t u = ((uint32_t)p[0] << 8) | (uint32_t)p[1];

@@ -190,6 +190,13 @@ imu_status_t imu_spi_set_clock(const imu_spi_bus_t *bus, uint32_t max_hz);
 int16_t imu_be16(const uint8_t *p);
 
 /*
+ * 1 when a burst of n bytes holds one value throughout, 0x00 or 0xFF: a chip
+ * that is asleep, gone or held in reset returns that; a live one never does
+ * (gravity alone moves an axis). Both chips' reads refuse such a burst.
+ */
+uint8_t imu_burst_is_blank(const uint8_t *b, uint8_t n);
+
+/*
  * Counts to Q16 at +/-2000 deg/s (16.4 LSB per deg/s) and +/-16 g (2048
  * LSB/g), both chips' nominal sensitivities:
  *   gyro:  raw * (65536 pi / (180 * 16.4)) = raw * 69.74506, held as

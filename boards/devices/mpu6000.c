@@ -105,19 +105,7 @@ imu_status_t mpu6000_read_raw(const imu_spi_bus_t *bus, int16_t accel[3], int16_
     if (st != IMU_OK) {
         return st;
     }
-    /* A chip that is asleep, gone or held in reset returns one byte value
-     * throughout; a live one never does (gravity alone moves an axis). */
-    uint8_t all_00 = 1u;
-    uint8_t all_ff = 1u;
-    for (uint8_t i = 0u; i < MPU6000_BURST_BYTES; ++i) {
-        if (b[i] != 0x00u) {
-            all_00 = 0u;
-        }
-        if (b[i] != 0xFFu) {
-            all_ff = 0u;
-        }
-    }
-    if (all_00 || all_ff) {
+    if (imu_burst_is_blank(b, MPU6000_BURST_BYTES) != 0u) {
         return IMU_ERR_DATA;
     }
     /* RM, registers 59-72: ACCEL_XOUT_H .. GYRO_ZOUT_L, high byte first */
