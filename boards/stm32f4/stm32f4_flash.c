@@ -151,6 +151,20 @@ static void flush_dcache(stm32_flash_t *f)
     wr(&f->regs->ACR, acr);
 }
 
+/* Every erase and program starts alike: the controller idle (no CR write
+ * while BSY: it would stall the bus), unlocked, and the old flags cleared. */
+static stm32_flash_status_t begin_operation(stm32_flash_t *f, uint32_t spin_limit)
+{
+    if (!wait_idle(f, spin_limit)) {
+        return STM32_FLASH_ERR_TIMEOUT;
+    }
+    const stm32_flash_status_t u = unlock(f);
+    if (u == STM32_FLASH_OK) {
+        clear_flags(f);
+    }
+    return u;
+}
+
 stm32_flash_status_t stm32_flash_erase_sector(stm32_flash_t *f, uint32_t sector)
 {
     if (f == NULL || !f->ready) {
@@ -159,14 +173,10 @@ stm32_flash_status_t stm32_flash_erase_sector(stm32_flash_t *f, uint32_t sector)
     if (sector >= STM32_FLASH_SECTORS) {
         return STM32_FLASH_ERR_RANGE;
     }
-    if (!wait_idle(f, f->erase_spin_limit)) {
-        return STM32_FLASH_ERR_TIMEOUT;
-    }
-    const stm32_flash_status_t u = unlock(f);
+    const stm32_flash_status_t u = begin_operation(f, f->erase_spin_limit);
     if (u != STM32_FLASH_OK) {
         return u;
     }
-    clear_flags(f);
     /* RM0090 section 3.6.3, sector erase: SER and SNB, then STRT. */
     const uint32_t snb = (sector << FLASH_CR_SNB_SHIFT) & FLASH_CR_SNB_MASK;
     const uint32_t cr = FLASH_CR_PSIZE_X32 | FLASH_CR_SER | snb;
@@ -218,14 +228,10 @@ stm32_flash_status_t stm32_flash_program(stm32_flash_t *f, uint32_t offset, cons
     if (n == 0u) {
         return STM32_FLASH_OK;
     }
-    if (!wait_idle(f, f->program_spin_limit)) {
-        return STM32_FLASH_ERR_TIMEOUT;
-    }
-    const stm32_flash_status_t u = unlock(f);
+    const stm32_flash_status_t u = begin_operation(f, f->program_spin_limit);
     if (u != STM32_FLASH_OK) {
         return u;
     }
-    clear_flags(f);
     /* RM0090 section 3.6.4: PG set, then word writes (x32: word accesses),
      * each followed by BSY = 0. */
     wr(&f->regs->CR, FLASH_CR_PSIZE_X32 | FLASH_CR_PG);
