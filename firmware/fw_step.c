@@ -22,6 +22,7 @@ void fw_config_default(fw_config_t *cfg)
     const ht_params_t law = HT_PARAMS_DEFAULT;
     cfg->law = law;
     ht_modes_params_default(&cfg->modes);
+    ht_guide_params_default(&cfg->guide);
     const ht_upset_guard_params_t guard = HT_UPSET_GUARD_PARAMS_DEFAULT;
     cfg->guard = guard;
     static const uint8_t fn[5] = {OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_THROTTLE, OS_FN_RUDDER,
@@ -78,6 +79,10 @@ int fw_init(fw_t *fw, const fw_config_t *cfg)
                       &fw->modes_bad) != 0) {
         return refuse(fw, FW_BAD_MODES, (int32_t)fw->modes_bad.field);
     }
+    ht_guide_param_id_t guide_bad = HT_GUIDE_P_NONE;
+    if (ht_guide_init(&fw->guide, &cfg->guide, cfg->modes.rate_hz, &guide_bad) != 0) {
+        return refuse(fw, FW_BAD_GUIDE, (int32_t)guide_bad);
+    }
     if (ht_upset_guard_check(&cfg->guard) != HT_UG_OK) {
         return refuse(fw, FW_BAD_GUARD, 0);
     }
@@ -93,6 +98,7 @@ int fw_init(fw_t *fw, const fw_config_t *cfg)
             q_clamp32(cfg->alt_integral_q20[i], -max_i_q20, max_i_q20);
     }
     ht_upset_guard_reset(&fw->guard_state);
+    ht_guide_reset(&fw->guide_state);
     fw->imu_age = cfg->imu_timeout_samples; /* nothing flies before the first sample */
     fw->ready = 1u;
     return 1;
@@ -240,6 +246,26 @@ static void law_input(ht_input_t *li, const fw_nav_t *nav)
     li->gyro_rad_s[2] = nav->gyro_q11_rad_s[2];
 }
 
+/* The turn-rate trim (guide.h) on the law's input, then the law. The trim
+ * holds while the previous step was tilt-limited or had a surface at its
+ * stop, while the pilot flies (manual: the law's output is not used), and
+ * until the estimator knows its heading: before a turn has taught it the
+ * wind, its heading follows the GPS course, whose crab swings the heading's
+ * rate by the crab times the turn rate (20 % in a 10 m/s wind at 50 m/s). */
+static void trimmed_law(fw_t *fw, const fw_nav_t *nav, uint8_t pitch_mode, uint8_t manual,
+                        ht_input_t *li, ht_output_t *lo)
+{
+    const uint8_t busy = (uint8_t)HT_F_TILT_LIMITED | (uint8_t)HT_F_SURFACE_SATURATED;
+    const uint8_t heading_known =
+        ((fw->dcm_state.flags & (uint16_t)HT_DCM_F_HEADING_KNOWN) != 0u) ? 1u : 0u;
+    const uint8_t hold =
+        (manual != 0u || (fw->law_flags & busy) != 0u || heading_known == 0u) ? 1u : 0u;
+    li->turn_rate_rad_s = ht_guide_turn_rate(&fw->guide, &fw->guide_state, li->turn_rate_rad_s,
+                                             nav->heading_north, nav->heading_east, hold);
+    ht_step(&fw->law[pitch_mode], li, lo);
+    fw->law_flags = lo->flags;
+}
+
 /* Guided: holds -> upset guard -> law; the surfaces go straight to the mixer. */
 static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_output_t *o,
                    os_command_t *cmd)
@@ -266,7 +292,7 @@ static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_outpu
     li->pitch_ratio = pitch;
     li->inverted = inverted;
     const uint8_t pm = (c->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
-    ht_step(&fw->law[pm], li, &o->law);
+    trimmed_law(fw, nav, pm, 0u, li, &o->law);
     cmd->aileron = o->law.aileron;
     cmd->elevator = o->law.elevator;
     cmd->rudder = o->law.rudder;
@@ -308,9 +334,10 @@ static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_outpu
     ht_input_t *li = &o->modes.law_in;
     li->pitch_ratio = ht_upset_guard_step(&fw->cfg->guard, &fw->guard_state, li->x, li->y, li->z,
                                           li->inverted, li->pitch_ratio);
-    o->law_in = *li;
     const uint8_t pm = (fw->cfg->modes_pitch_mode != 0u) ? 1u : 0u;
-    ht_step(&fw->law[pm], li, &o->law);
+    const uint8_t manual = (o->modes.mode == (uint8_t)HT_MODE_MANUAL) ? 1u : 0u;
+    trimmed_law(fw, nav, pm, manual, li, &o->law);
+    o->law_in = *li;
     ht_modes_surfaces(&o->modes, &o->law, cmd);
     o->throttle = o->modes.throttle;
     o->pitch_cmd = li->pitch_ratio;

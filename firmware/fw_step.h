@@ -45,6 +45,7 @@
 
 #include "helical/board.h"
 #include "helical/dcm.h"
+#include "helical/guide.h"
 #include "helical/geo.h"
 #include "helical/helical_turn.h"
 #include "helical/holds.h"
@@ -63,6 +64,7 @@ typedef struct {
     ht_dcm_params_t dcm;
     ht_params_t law;         /* pitch_mode is ignored: one controller per pitch method */
     ht_modes_params_t modes; /* also the holds (modes.alt, modes.speed) and the control rate */
+    ht_guide_params_t guide; /* between the modes and the law: the turn-rate trim */
     ht_upset_guard_params_t guard;
     os_config_t out;
     const ht_waypoint_t *waypoints; /* the caller's; must outlive the fw_t */
@@ -89,7 +91,8 @@ typedef enum {
     FW_BAD_GUARD,
     FW_BAD_OUTPUT,  /* sub = the first bad channel */
     FW_BAD_DIVIDER, /* control_divider or the rates do not agree */
-    FW_BAD_TIMEOUT
+    FW_BAD_TIMEOUT,
+    FW_BAD_GUIDE /* sub = ht_guide_param_id_t */
 } fw_bad_block_t;
 
 /* A complete navigation solution (the estimator's, or an external one). */
@@ -149,6 +152,9 @@ typedef struct {
     ht_controller_t law[2]; /* index = ht_pitch_mode_t */
     ht_modes_t modes;
     ht_modes_state_t modes_state; /* its alt / speed states are the guided path's too */
+    ht_guide_t guide;
+    ht_guide_state_t guide_state;
+    uint8_t law_flags; /* the previous control step's ht_output_t flags */
     ht_upset_guard_state_t guard_state;
     ht_geo_origin_t home;
     fw_nav_t nav; /* the estimate path's solution between control steps */

@@ -123,6 +123,14 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
     PUT_##fmt(&p[off], s->field);                                                                  \
     off += HT_PFMT_BYTES_##fmt;
 
+/* the guidance's rows (in CFG_EST, after the timing) */
+#define GUIDE_GET(id, name, field, unit, fmt, lo, hi, def, desc)                                   \
+    g->field = GET_##fmt(&p[off]);                                                                 \
+    off += HT_PFMT_BYTES_##fmt;
+#define GUIDE_PUT(id, name, field, unit, fmt, lo, hi, def, desc)                                   \
+    PUT_##fmt(&p[off], g->field);                                                                  \
+    off += HT_PFMT_BYTES_##fmt;
+
 _Static_assert(HIL_LEN_CFG_LAW <= HIL_PAYLOAD_MAX,
                "the law's rows no longer fit one CFG_LAW frame: split it (docs/parameters.md)");
 _Static_assert(HIL_LEN_CFG_EST <= HIL_PAYLOAD_MAX,
@@ -152,6 +160,10 @@ void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
     HT_PARAMS_DCM(ROW_PUT)
     hil_put_u16(&p[off], c->control_divider);
     hil_put_u16(&p[off + 2u], c->imu_timeout_samples);
+    off += 4u;
+    const ht_guide_params_t *g = &c->guide;
+    HT_PARAMS_GUIDE(GUIDE_PUT)
+    (void)off;
 }
 
 void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c)
@@ -161,6 +173,10 @@ void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c)
     HT_PARAMS_DCM(ROW_GET)
     c->control_divider = hil_get_u16(&p[off]);
     c->imu_timeout_samples = hil_get_u16(&p[off + 2u]);
+    off += 4u;
+    ht_guide_params_t *g = &c->guide;
+    HT_PARAMS_GUIDE(GUIDE_GET)
+    (void)off;
 }
 
 static void cfg_law(hil_fw_t *h, const uint8_t *p)
@@ -262,6 +278,10 @@ static void refused(hil_fw_t *h)
     case FW_BAD_TIMEOUT:
         block = (uint8_t)HIL_ID_CFG_EST;
         detail = (uint8_t)HIL_EST_BAD_TIMEOUT;
+        break;
+    case FW_BAD_GUIDE:
+        block = (uint8_t)HIL_ID_CFG_EST;
+        detail = (uint8_t)(HIL_EST_BAD_GUIDE + (uint32_t)fw->bad_sub); /* ht_guide_param_id_t */
         break;
     default:
         break; /* the upset guard follows CFG_ALT's rate */

@@ -30,8 +30,9 @@
 #include "helical/hil_frame.h"
 
 #define HIL_PROTOCOL_VERSION                                                                       \
-    5u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
-          5: CFG_LAW and CFG_EST laid out by the parameter table */
+    6u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
+          5: CFG_LAW and CFG_EST laid out by the parameter table;                                  \
+          6: CFG_EST ends with the guidance's rows */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -40,7 +41,7 @@
 #define HIL_ID_CFG_SPD    0x12u
 #define HIL_ID_CFG_OUT    0x13u
 #define HIL_ID_START      0x14u /* empty: check the staged configuration, answered by ACK */
-#define HIL_ID_CFG_EST    0x15u /* the estimator, the IMU rate, the divider, the timeout */
+#define HIL_ID_CFG_EST    0x15u /* the estimator, the divider, the timeout, the guidance */
 #define HIL_ID_SENSORS    0x20u /* the step's last IMU sample: answered by STATE + OUTPUT */
 #define HIL_ID_STEP       0x21u /* opens a control step: slow sensors, command, flags */
 #define HIL_ID_TRUTH      0x22u /* the simulator's navigation solution (flag USE_TRUTH) */
@@ -56,9 +57,11 @@
 /* Payload lengths. CFG_LAW is the law's rows of the parameter table
  * (include/helical/params.def) in its order, each as wide as its format;
  * CFG_EST the estimator's rows, then u16 control_divider and u16
- * imu_timeout_samples. A new row lengthens its frame by itself. */
+ * imu_timeout_samples, then the guidance's rows. A new row lengthens its
+ * frame by itself. */
 #define HIL_LEN_CFG_LAW ((uint8_t)(0u HT_PARAMS_LAW(HT_PARAM_X_BYTES)))
-#define HIL_LEN_CFG_EST ((uint8_t)(0u HT_PARAMS_DCM(HT_PARAM_X_BYTES) + 4u))
+#define HIL_LEN_CFG_EST                                                                            \
+    ((uint8_t)(0u HT_PARAMS_DCM(HT_PARAM_X_BYTES) + 4u HT_PARAMS_GUIDE(HT_PARAM_X_BYTES)))
 #define HIL_LEN_CFG_ALT 52u
 #define HIL_LEN_CFG_SPD 22u
 #define HIL_LEN_CFG_OUT 58u
@@ -103,6 +106,8 @@
 /* ACK detail of a refused CFG_EST beyond the ht_dcm_param_id_t values */
 #define HIL_EST_BAD_DIVIDER 0x40u /* control_divider * CFG_ALT rate_hz != imu_rate_hz */
 #define HIL_EST_BAD_TIMEOUT 0x41u /* imu_timeout_samples out of [1, 10000] */
+/* a refused guidance row: 0x80 + its ht_guide_param_id_t */
+#define HIL_EST_BAD_GUIDE 0x80u
 
 /* NAK reasons */
 #define HIL_NAK_NOT_STARTED 1u /* STEP or SENSORS before a successful START */

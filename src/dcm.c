@@ -756,6 +756,9 @@ void ht_dcm_update(const ht_dcm_t *d, ht_dcm_state_t *s, const ht_imu_sample_t *
     /* a heading is trusted once a turn has taught the wind, or with a
      * magnetometer (dcm_gps_accel.c drop_heading_term) */
     const uint8_t heading_trusted = (s->wind.solved != 0u || a->mag_valid != 0u) ? 1u : 0u;
+    if (heading_trusted != 0u) {
+        flags |= (uint16_t)HT_DCM_F_HEADING_KNOWN;
+    }
     if (dcm_ga_error(&s->ga, cs->r, heading_trusted, e_rp) != 0) {
         /* the GPS acceleration: the w x v model and its filters rest (they
          * restart from this sample's reference when the GPS goes) */

@@ -7,26 +7,17 @@
 
 #include "helical/dcm.h"
 
-static const char *const dcm_param_names[HT_DCM_P_COUNT] = {"", HT_PARAMS_DCM(HT_PARAM_X_NAME)};
-
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t dcm_param_info[HT_PARAM_DCM_COUNT] = {HT_PARAMS_DCM(HT_PARAM_X_INFO)};
 
 const char *ht_dcm_param_name(ht_dcm_param_id_t id)
 {
-    if ((int)id <= 0 || (int)id >= (int)HT_DCM_P_COUNT) {
-        return "";
-    }
-    return dcm_param_names[id];
+    return ht_param_row_name(ht_dcm_param_info(id));
 }
 
 const ht_param_info_t *ht_dcm_param_info(ht_dcm_param_id_t id)
 {
-    if ((int)id <= 0 || (int)id >= (int)HT_DCM_P_COUNT) {
-        return NULL;
-    }
-    const int i = (int)id - 1;
-    return &dcm_param_info[i];
+    return ht_param_row(dcm_param_info, HT_PARAM_DCM_COUNT, (int)id);
 }
 
 /* One row's default (params.def), folded to an integer constant. */

@@ -16,26 +16,17 @@
 /* 980.665 (g in cm/s^2) in Q20: max_tilt (Q16) * g -> Q18 of (rad/s)*(cm/s). */
 #define HT_G_CM_S2_Q20 1028301783L
 
-static const char *const param_names[HT_P_COUNT] = {"", HT_PARAMS_LAW(HT_PARAM_X_NAME)};
-
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t param_info[HT_PARAM_LAW_COUNT] = {HT_PARAMS_LAW(HT_PARAM_X_INFO)};
 
 const char *ht_param_name(ht_param_id_t id)
 {
-    if ((int)id <= 0 || (int)id >= (int)HT_P_COUNT) {
-        return "";
-    }
-    return param_names[id];
+    return ht_param_row_name(ht_param_info(id));
 }
 
 const ht_param_info_t *ht_param_info(ht_param_id_t id)
 {
-    if ((int)id <= 0 || (int)id >= (int)HT_P_COUNT) {
-        return NULL;
-    }
-    const int i = (int)id - 1;
-    return &param_info[i];
+    return ht_param_row(param_info, HT_PARAM_LAW_COUNT, (int)id);
 }
 
 static int in_range(int32_t v, int32_t lo, int32_t hi)

@@ -274,6 +274,30 @@ static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, si
     return 0;
 }
 
+#define SIL_SET_GUIDE_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                         \
+    case HT_GUIDE_P_##id:                                                                          \
+        g->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
+        break;
+
+/* The guidance (sil_config_t guidance[], the table's units and order). */
+static int guide_params(const sil_config_t *cfg, ht_guide_params_t *g, char *err, size_t err_len)
+{
+    for (int i = 1; i < (int)HT_GUIDE_P_COUNT; ++i) {
+        const ht_guide_param_id_t id = (ht_guide_param_id_t)i;
+        int64_t raw = 0;
+        if (table_value(cfg->guidance[i - 1], ht_guide_param_info(id), "guidance.", &raw, err,
+                        err_len) != 0) {
+            return 1;
+        }
+        switch (id) {
+            HT_PARAMS_GUIDE(SIL_SET_GUIDE_FIELD)
+        default:
+            break;
+        }
+    }
+    return 0;
+}
+
 const ht_param_info_t *sil_param_info(int group, int index)
 {
     const int id = index + 1;
@@ -283,12 +307,16 @@ const ht_param_info_t *sil_param_info(int group, int index)
     if (group == 1) {
         return ht_dcm_param_info((ht_dcm_param_id_t)id);
     }
+    if (group == 2) {
+        return ht_guide_param_info((ht_guide_param_id_t)id);
+    }
     return NULL;
 }
 
 int sil_param_count(int group)
 {
-    return (group == 0) ? HT_PARAM_LAW_COUNT : ((group == 1) ? HT_PARAM_DCM_COUNT : 0);
+    static const int counts[3] = {HT_PARAM_LAW_COUNT, HT_PARAM_DCM_COUNT, HT_PARAM_GUIDE_COUNT};
+    return (group >= 0 && group < 3) ? counts[group] : 0;
 }
 
 /* The holds (holds.h), checked here so that a refusal names the hold. */
@@ -347,6 +375,10 @@ static int fw_refused(const fw_t *fw, char *err, size_t err_len)
     case FW_BAD_LAW:
         (void)snprintf(name, sizeof name, "%s", ht_param_name((ht_param_id_t)fw->bad_sub));
         break;
+    case FW_BAD_GUIDE:
+        (void)snprintf(name, sizeof name, "guidance.%s",
+                       ht_guide_param_name((ht_guide_param_id_t)fw->bad_sub));
+        break;
     case FW_BAD_MODES:
         ht_modes_bad_name(&fw->modes_bad, name, (unsigned)sizeof name);
         break;
@@ -395,6 +427,9 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     }
     if (rc == 0) {
         rc = dcm_params(cfg, &fc->dcm, err, err_len);
+    }
+    if (rc == 0) {
+        rc = guide_params(cfg, &fc->guide, err, err_len);
     }
     if (rc == 0 && cfg->modes_enabled != 0) {
         rc = modes_params(b, cfg, &fc->modes, err, err_len);

@@ -31,8 +31,9 @@ extern "C" {
 #endif
 
 #define SIL_BOARD_ABI_VERSION                                                                      \
-    11 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
-          10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table */
+    12 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+          10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table;               \
+          12: guidance[] (the turn-rate trim) */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -52,6 +53,9 @@ typedef struct {
      * sil/helical_sil/params.py reads the same table. */
     double law[HT_PARAM_LAW_COUNT];
     double estimator[HT_PARAM_DCM_COUNT];
+    /* ABI 12: the guidance between the modes and the law (guide.h), the
+     * same way */
+    double guidance[HT_PARAM_GUIDE_COUNT];
     /* altitude hold (holds.h) */
     double alt_kp_pitch_per_m, alt_ki_pitch_per_m_s, alt_kd_pitch_per_m_s;
     double alt_max_pitch, alt_max_integral_pitch, alt_max_error_m, alt_integral_band_m;
@@ -200,7 +204,8 @@ size_t sil_command_size(void);
 size_t sil_actuators_size(void);
 
 /* The parameter table's rows, for the harness's cross-check
- * (sil/tests/test_params.py): group 0 the law, 1 the estimator; index from 0
+ * (sil/tests/test_params.py): group 0 the law, 1 the estimator, 2 the
+ * guidance; index from 0
  * in the table's order. NULL / 0 for anything else. */
 const ht_param_info_t *sil_param_info(int group, int index);
 int sil_param_count(int group);

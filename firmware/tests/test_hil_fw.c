@@ -109,6 +109,10 @@ static sil_config_t config(void)
         const ht_param_info_t *info = ht_dcm_param_info((ht_dcm_param_id_t)i);
         c.estimator[i - 1] = (double)info->default_raw / (double)info->scale;
     }
+    for (int i = 1; i < (int)HT_GUIDE_P_COUNT; ++i) {
+        const ht_param_info_t *info = ht_guide_param_info((ht_guide_param_id_t)i);
+        c.guidance[i - 1] = (double)info->default_raw / (double)info->scale;
+    }
     c.law[HT_P_KP_AILERON - 1] = 2.0;
     c.law[HT_P_KP_ELEVATOR - 1] = 6.0;
     c.law[HT_P_KP_RUDDER - 1] = 0.3;
@@ -820,6 +824,15 @@ static void test_start_checks_the_configuration(void)
     push_frame(HIL_ID_START, NULL, 0);
     expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST, (uint8_t)HT_DCM_P_IMU_RATE);
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
+    /* a guidance row beyond its bound: 0x80 + its id */
+    est = sil.cfg;
+    est.guide.turn_trim_max = 65536; /* 1.0 > 0.5 */
+    hil_cfg_est_write(p, &est);
+    push_frame(HIL_ID_CFG_EST, p, HIL_LEN_CFG_EST);
+    push_frame(HIL_ID_START, NULL, 0);
+    expect_ack(HIL_ACK_REFUSED, HIL_ID_CFG_EST,
+               (uint8_t)(HIL_EST_BAD_GUIDE + (uint32_t)HT_GUIDE_P_TURN_TRIM_MAX));
+    TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 
     send_config(&c, q16(c.law[HT_P_KP_AILERON - 1]));
     push_frame(HIL_ID_START, NULL, 0);
@@ -830,7 +843,7 @@ static void test_start_checks_the_configuration(void)
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 }
 
-/* CFG_LAW and CFG_EST follow the parameter table (protocol 5,
+/* CFG_LAW and CFG_EST follow the parameter table (protocol 6,
  * docs/hil-protocol.md): each field at its documented offset and width, and
  * the parser gives back every field the writer wrote (a row missing from
  * either, or a width that disagrees, fails here). */
@@ -887,9 +900,15 @@ static void test_cfg_frames_follow_the_table(void)
     d->gps_latency_ms = 0xD1D2u;
     c.control_divider = 0xE1E2u;
     c.imu_timeout_samples = 0xF1F2u;
+    ht_guide_params_t *g = &c.guide;
+    g->turn_trim = 0xA7u;
+    g->turn_trim_tau_s = 0x21212121;
+    g->turn_trim_max = 0x22222222;
+    g->turn_trim_min_rate_rad_s = 0x23232323;
+    g->turn_trim_hold_s = 0x24242424;
     memset(p, 0xEE, sizeof p);
     hil_cfg_est_write(p, &c);
-    TEST_ASSERT_EQUAL_UINT8(43u, HIL_LEN_CFG_EST);
+    TEST_ASSERT_EQUAL_UINT8(60u, HIL_LEN_CFG_EST);
     TEST_ASSERT_EQUAL_HEX16(0xB1B2u, hil_get_u16(&p[0]));
     for (int i = 0; i < 8; ++i) {
         TEST_ASSERT_EQUAL_INT32(0x11111111 + 0x01010101 * i, hil_get_i32(&p[2 + 4 * i]));
@@ -899,13 +918,18 @@ static void test_cfg_frames_follow_the_table(void)
     TEST_ASSERT_EQUAL_HEX16(0xD1D2u, hil_get_u16(&p[37]));
     TEST_ASSERT_EQUAL_HEX16(0xE1E2u, hil_get_u16(&p[39]));
     TEST_ASSERT_EQUAL_HEX16(0xF1F2u, hil_get_u16(&p[41]));
-    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[43]);
+    TEST_ASSERT_EQUAL_HEX8(0xA7u, p[43]); /* protocol 6: the guidance's rows */
+    for (int i = 0; i < 4; ++i) {
+        TEST_ASSERT_EQUAL_INT32(0x21212121 + 0x01010101 * i, hil_get_i32(&p[44 + 4 * i]));
+    }
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[60]);
     fw_config_t cb;
     memset(&cb, 0, sizeof cb);
     hil_cfg_est_parse(p, &cb);
     TEST_ASSERT_EQUAL_MEMORY(&c.dcm, &cb.dcm, sizeof c.dcm);
     TEST_ASSERT_EQUAL_UINT16(c.control_divider, cb.control_divider);
     TEST_ASSERT_EQUAL_UINT16(c.imu_timeout_samples, cb.imu_timeout_samples);
+    TEST_ASSERT_EQUAL_MEMORY(&c.guide, &cb.guide, sizeof c.guide);
 }
 
 int main(void)

@@ -157,8 +157,11 @@ enum ht_dcm_flag {
     HT_DCM_F_YAW_AIDED = 1u << 5,       /* this sample: yaw corrected from GPS course / mag */
     HT_DCM_F_BIAS_LIMITED = 1u << 6,    /* a bias component sits on its bound */
     HT_DCM_F_CF_GPS = 1u << 7,          /* this sample's centripetal term used GPS velocity */
-    HT_DCM_F_GPS_ACCEL = 0x100u         /* this sample's roll/pitch reference was the GPS
+    HT_DCM_F_GPS_ACCEL = 0x100u,        /* this sample's roll/pitch reference was the GPS
                                             acceleration (not the accelerometer's w x v model) */
+    HT_DCM_F_HEADING_KNOWN = 0x200u     /* the heading is the nose's: a turn has taught the
+                                            wind (the course no longer carries the crab) or a
+                                            magnetometer is valid */
 };
 
 /* The wind estimate's time constant, s (src/dcm_wind.h): the regression's

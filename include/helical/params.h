@@ -101,8 +101,9 @@
      HT_PFMT_BYTES_##fmt},
 
 /* Parameters per group (integer constant expressions). */
-#define HT_PARAM_LAW_COUNT (0 HT_PARAMS_LAW(HT_PARAM_X_ONE))
-#define HT_PARAM_DCM_COUNT (0 HT_PARAMS_DCM(HT_PARAM_X_ONE))
+#define HT_PARAM_LAW_COUNT   (0 HT_PARAMS_LAW(HT_PARAM_X_ONE))
+#define HT_PARAM_DCM_COUNT   (0 HT_PARAMS_DCM(HT_PARAM_X_ONE))
+#define HT_PARAM_GUIDE_COUNT (0 HT_PARAMS_GUIDE(HT_PARAM_X_ONE))
 
 /* What one row says, for tools, messages and the cross-checks of the tests
  * (ht_param_info, ht_dcm_param_info). Bounds and default as stored. */
@@ -115,5 +116,12 @@ typedef struct {
     int32_t scale; /* stored = engineering value * scale: 65536, 100 or 1 */
     uint8_t bytes; /* HT_PFMT_BYTES_* */
 } ht_param_info_t;
+
+/* Row id (1 .. count) of a group's table (ids start at 1, after *_NONE), or
+ * NULL for any other id or a NULL table. */
+const ht_param_info_t *ht_param_row(const ht_param_info_t *table, int count, int id);
+
+/* A row's name; "" for NULL. */
+const char *ht_param_row_name(const ht_param_info_t *row);
 
 #endif /* HELICAL_PARAMS_H */

@@ -14,7 +14,7 @@ from typing import Any
 
 from helical_sil import params as ptable
 
-ABI_VERSION = 11
+ABI_VERSION = 12
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
@@ -28,6 +28,8 @@ class SilConfig(ctypes.Structure):
         # ABI 11: one value per row of the parameter table, in its order and units
         ("law", _D * len(ptable.LAW)),
         ("estimator", _D * len(ptable.ESTIMATOR)),
+        # ABI 12: the guidance between the modes and the law (the turn-rate trim)
+        ("guidance", _D * len(ptable.GUIDANCE)),
         *((n, _D) for n in (
             "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
             "alt_max_pitch", "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
@@ -169,23 +171,27 @@ def find_board_library(explicit: str | os.PathLike[str] | None = None) -> Path:
         "(cmake --workflow --preset host) or set HT_SIL_BOARD_LIB")
 
 
-def table_values(config: dict[str, Any]) -> tuple[dict[str, float], dict[str, float]]:
-    """The law's and the estimator's values of a board config, in the table's
-    units: config["law"] and config["estimator"] (name -> value) over the
-    table's defaults; unknown names are refused. The IMU runs at three samples
+def table_values(config: dict[str, Any]
+                 ) -> tuple[dict[str, float], dict[str, float], dict[str, float]]:
+    """The law's, the estimator's and the guidance's values of a board config,
+    in the table's units: config["law"], config["estimator"] and
+    config["guidance"] (name -> value) over the table's defaults; unknown
+    names are refused. The IMU runs at three samples
     per control step unless said (the SIL's 120 Hz at 40 Hz)."""
     law = ptable.law_defaults()
     est = ptable.estimator_defaults()
+    guide = ptable.guidance_defaults()
     est["imu_rate_hz"] = float(3 * int(config.get("control_rate_hz", 40)))
     for group, known, into in (("law", ptable.LAW_BY_NAME, law),
-                               ("estimator", ptable.ESTIMATOR_BY_NAME, est)):
+                               ("estimator", ptable.ESTIMATOR_BY_NAME, est),
+                               ("guidance", ptable.GUIDANCE_BY_NAME, guide)):
         given = config.get(group, {})
         for k, v in given.items():
             if k not in known:
                 raise BoardError(f"board config {group}: unknown parameter '{k}' "
                                  f"(the table's: {', '.join(known)})")
             into[k] = float(v)
-    return law, est
+    return law, est, guide
 
 
 class Board:
@@ -210,13 +216,15 @@ class Board:
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
         full = {**MODES_CONFIG_DEFAULTS, **config}
-        law, est = table_values(full)
+        law, est, guide = table_values(full)
         for i, p in enumerate(ptable.LAW):
             cfg.law[i] = law[p.name]
         for i, p in enumerate(ptable.ESTIMATOR):
             cfg.estimator[i] = est[p.name]
+        for i, p in enumerate(ptable.GUIDANCE):
+            cfg.guidance[i] = guide[p.name]
         for name, _t in SilConfig._fields_:
-            if name in ("law", "estimator"):
+            if name in ("law", "estimator", "guidance"):
                 continue
             if name not in full:
                 raise BoardError(f"board config lacks '{name}'")
@@ -256,10 +264,10 @@ class Board:
 
 def compiled_table(lib_path: str | os.PathLike[str] | None = None) -> dict[str, list[dict[str, Any]]]:
     """The parameter table as the C side compiled it (sil_param_info), per
-    group ("LAW", "DCM"): name, unit, format, stored bounds and default."""
+    group ("LAW", "DCM", "GUIDE"): name, unit, format, stored bounds and default."""
     lib = Board.library(lib_path)
     out: dict[str, list[dict[str, Any]]] = {}
-    for g, key in ((0, "LAW"), (1, "DCM")):
+    for g, key in ((0, "LAW"), (1, "DCM"), (2, "GUIDE")):
         rows = []
         for i in range(lib.sil_param_count(g)):
             r = lib.sil_param_info(g, i).contents

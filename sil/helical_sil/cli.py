@@ -306,8 +306,64 @@ def _cell(v: Any) -> str:
     return str(v)[:16]
 
 
+# compare of batch folders: per scenario, these summary columns of each batch
+BATCH_COMPARE_COLS = ("turn_rate_error_pct", "turn_entry_s", "altitude_change_per_360_m",
+                      "max_altitude_loss_m", "attitude_error_rms_deg", "result")
+
+
+def _batch_runs(d: Path) -> dict[str, dict[str, str]]:
+    """A batch folder's runs (summary.json's names), each as its summary row
+    (from its own metrics.json)."""
+    try:
+        names = list(json.loads((d / "summary.json").read_text(encoding="utf-8")))
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        raise UsageError(f"{d / 'summary.json'}: not a batch summary ({e})") from None
+    return {n: _summary_row(_load_metrics(d / n / "metrics.json")) for n in names}
+
+
+def _batch_columns(dirs: list[Path]) -> tuple[list[str], list[dict[str, dict[str, str]]]]:
+    """The columns to put side by side: one per batch folder, or, for one
+    folder of `batch --attitude both`, its truth and its estimate runs."""
+    if len(dirs) == 1:
+        runs = _batch_runs(dirs[0])
+        pairs = [("truth", "_truth"), ("estimate", "_estimate")]
+        cols = [{n[:-len(suf)]: r for n, r in runs.items() if n.endswith(suf)}
+                for _h, suf in pairs]
+        if not cols[0] or not cols[1]:
+            raise UsageError(f"{dirs[0]}: one batch folder compares only a batch flown with "
+                             "--attitude both; give two or more folders otherwise")
+        return [h for h, _s in pairs], cols
+    return [d.name for d in dirs], [_batch_runs(d) for d in dirs]
+
+
+def compare_batches(dirs: list[Path]) -> str:
+    """Per scenario, the headline numbers of each batch side by side (the
+    worst over its segments, as batch's own table)."""
+    heads, cols = _batch_columns(dirs)
+    names = [n for n in cols[0] if all(n in c for c in cols[1:])]
+    if not names:
+        raise UsageError("the batches have no scenario in common")
+    titles = {k: h for k, h, _f in SUMMARY_COLS}
+    head = ["scenario"] + [f"{titles[k]} {h}" for k in BATCH_COMPARE_COLS for h in heads]
+    rows = [[n] + [c[n].get(k, "-") for k in BATCH_COMPARE_COLS for c in cols] for n in names]
+    widths = [max(len(head[i]), *(len(r[i]) for r in rows)) for i in range(len(head))]
+    out = ["| " + " | ".join(h.ljust(w) for h, w in zip(head, widths)) + " |",
+           "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
+    out += ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |" for r in rows]
+    passed = [sum(c[n]["result"].startswith("PASS") for n in names) for c in cols]
+    out.append(", ".join(f"{h}: {p}/{len(names)} passed" for h, p in zip(heads, passed)))
+    return "\n".join(out)
+
+
 def cmd_compare(args: argparse.Namespace) -> int:
-    """Side by side, per segment label, the metrics of two or more runs."""
+    """Side by side, per segment label, the metrics of two or more runs; or,
+    given batch folders, per scenario."""
+    dirs = [Path(d) for d in args.runs]
+    if all((d / "summary.json").is_file() for d in dirs):
+        print(compare_batches(dirs))
+        return 0
+    if len(dirs) < 2:
+        raise UsageError("compare needs two or more run folders, or batch folders")
     runs = [_load_metrics(Path(d) / "metrics.json") for d in args.runs]
     keys = tuple(args.metrics) if args.metrics else COMPARE_KEYS
     labels = [s["label"] for s in runs[0]["segments"]]
@@ -399,8 +455,9 @@ def _add_upsets_parser(sub: Any) -> None:
                         f"{upsets.DEFAULT_FLOOR_M:g})")
     u.add_argument("--jobs", type=int, default=1, help="parallel runs (default 1)")
     u.add_argument("--plots", action="store_true", help="also write the PNG plots of each run")
-    u.add_argument("--attitude", choices=("truth", "estimate"), default="truth",
-                   help="what the law flies on: JSBSim's truth or the firmware's estimate")
+    u.add_argument("--attitude", choices=("truth", "estimate"), default="estimate",
+                   help="what the law flies on: the firmware's estimate (default) or "
+                        "JSBSim's truth")
     u.add_argument("--pitch-mode", choices=("earth_frame", "tilt_cross"), default="earth_frame",
                    help="the law's pitch method (default earth_frame, the tuned one)")
     u.add_argument("--known-failures", nargs="*", default=[], metavar="AIRCRAFT:INDEX",
@@ -459,8 +516,14 @@ def build_parser() -> argparse.ArgumentParser:
     c = sub.add_parser("compare", help="metrics of runs side by side", **_HELP,
                        description="Print, per segment label of the first run, the metrics of "
                                    "two or more run output folders side by side (for example "
-                                   "feed-forward on and off, or the two pitch methods).")
-    c.add_argument("runs", nargs="+", help="run output directories (with metrics.json)")
+                                   "feed-forward on and off, or the two pitch methods). Given "
+                                   "batch output folders instead (with summary.json), print per "
+                                   "scenario the headline numbers of each batch side by side; "
+                                   "one folder of `batch --attitude both` gives truth and "
+                                   "estimate side by side.")
+    c.add_argument("runs", nargs="+",
+                   help="run output directories (with metrics.json), or batch output "
+                        "directories (with summary.json)")
     c.add_argument("--metrics", nargs="*", help="metric names (default: a standard set)")
     c.set_defaults(func=cmd_compare)
     _add_upsets_parser(sub)  # fault campaign (issue 7)

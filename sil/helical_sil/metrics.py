@@ -149,7 +149,7 @@ def target_tilt(res: RunResult) -> np.ndarray:
     (the altitude hold's output when it is on) and the inverted flag. (n, 3)."""
     tel = res.telemetry
     g = res.scenario.gains
-    s = np.maximum(tel["sens_airspeed_m_s"], g["v_min"])
+    s = np.maximum(tel["law_airspeed_m_s"], g["v_min"])
     ratio = np.clip(np.radians(tel["turn_rate_used_deg_s"]) * s / G, -g["max_tilt"],
                     g["max_tilt"])
     p = tel["pitch_cmd"]

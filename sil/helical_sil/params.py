@@ -47,7 +47,7 @@ def _round_half_away(x: float) -> int:
 
 @dataclass(frozen=True)
 class Param:
-    group: str       # "LAW" or "DCM"
+    group: str       # "LAW", "DCM" or "GUIDE"
     index: int       # 0-based row in its group (the id is index + 1)
     id: str          # HT_P_<id> / HT_DCM_P_<id>
     name: str
@@ -181,8 +181,10 @@ def load(path: Path = DEF_PATH) -> list[Param]:
 TABLE: list[Param] = load()
 LAW: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "LAW")
 ESTIMATOR: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "DCM")
+GUIDANCE: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "GUIDE")
 LAW_BY_NAME: dict[str, Param] = {p.name: p for p in LAW}
 ESTIMATOR_BY_NAME: dict[str, Param] = {p.name: p for p in ESTIMATOR}
+GUIDANCE_BY_NAME: dict[str, Param] = {p.name: p for p in GUIDANCE}
 
 
 def law_defaults() -> dict[str, float]:
@@ -192,6 +194,10 @@ def law_defaults() -> dict[str, float]:
 
 def estimator_defaults() -> dict[str, float]:
     return {p.name: p.default for p in ESTIMATOR}
+
+
+def guidance_defaults() -> dict[str, float]:
+    return {p.name: p.default for p in GUIDANCE}
 
 
 def payload(params: tuple[Param, ...], values: dict[str, float]) -> bytes:

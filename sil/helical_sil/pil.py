@@ -46,8 +46,9 @@ from helical_sil.board import Board, BoardError, SilActuators, table_values
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 5  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency;
-#                        5: CFG_LAW and CFG_EST laid out by the parameter table
+PROTOCOL_VERSION = 6  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency;
+#                        5: CFG_LAW and CFG_EST laid out by the parameter table;
+#                        6: CFG_EST ends with the guidance's rows
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)
@@ -58,7 +59,7 @@ LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS = 52, 42, 24, 28
 # the configuration frames of the parameter table's rows (hil_fw.h): CFG_LAW
 # the law's rows in order, CFG_EST the estimator's, then divider and timeout
 LEN_CFG_LAW = params.payload_length(params.LAW)
-LEN_CFG_EST = params.payload_length(params.ESTIMATOR) + 4
+LEN_CFG_EST = params.payload_length(params.ESTIMATOR) + 4 + params.payload_length(params.GUIDANCE)
 IMU_MAX = 32  # samples per control step (HIL_IMU_MAX = SIL_IMU_MAX)
 # The firmware's receive ring holds 255 bytes: a step's frames beyond this
 # many bytes are sent after a HELLO/READY round trip (the firmware has then
@@ -202,12 +203,13 @@ def _u16(v: int) -> bytes:
 def cfg_est_payload(c: dict[str, Any]) -> bytes:
     """CFG_EST: the estimator's rows of the parameter table in order, as
     sil_board_init converts them, then the IMU timing (divider = imu / control
-    rate; timeout = imu rate / 5)."""
-    _, est = table_values(c)
+    rate; timeout = imu rate / 5), then the guidance's rows."""
+    _, est, guide = table_values(c)
     imu, ctl = int(est["imu_rate_hz"]), int(c["control_rate_hz"])
     if ctl < 1 or imu < ctl or imu % ctl != 0 or imu // ctl > IMU_MAX:
         raise PilError(f"imu_rate_hz {imu} is not 1..{IMU_MAX} times control_rate_hz {ctl}")
-    p = params.payload(params.ESTIMATOR, est) + _u16(imu // ctl) + _u16(imu // 5)
+    p = (params.payload(params.ESTIMATOR, est) + _u16(imu // ctl) + _u16(imu // 5)
+         + params.payload(params.GUIDANCE, guide))
     assert len(p) == LEN_CFG_EST
     return p
 
@@ -215,7 +217,7 @@ def cfg_est_payload(c: dict[str, Any]) -> bytes:
 def cfg_law_payload(c: dict[str, Any]) -> bytes:
     """CFG_LAW: the law's rows of the parameter table in order, as
     sil_board_init converts them."""
-    law, _ = table_values(c)
+    law, _, _ = table_values(c)
     p = params.payload(params.LAW, law)
     assert len(p) == LEN_CFG_LAW
     return p

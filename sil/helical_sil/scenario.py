@@ -282,9 +282,12 @@ class Scenario:
     criteria: list[PassCriterion] = field(default_factory=list)
     modes: ModesConfig | None = None  # flight modes: the [[rc]] timeline flies the board
     # --- sensor-level SIL (issue 13) ---
-    attitude_source: str = "truth"  # "truth": JSBSim's attitude; "estimate": the firmware's estimator
+    # "estimate" (default): the firmware's estimator on the simulated sensors;
+    # "truth": JSBSim's attitude, for comparison
+    attitude_source: str = "estimate"
     sensor_model: dict[str, Any] = field(default_factory=dict)  # [sensor_model] tables
     estimator: dict[str, float] = field(default_factory=dict)   # [estimator] overrides
+    guidance: dict[str, float] = field(default_factory=dict)    # [guidance] overrides (table units)
 
 
 # --- typed getters ----------------------------------------------------------
@@ -612,7 +615,8 @@ TOP_KEYS = ("aircraft", "description", "duration_s", "seed", "control_rate_hz", 
             "initial", "gains", "wind", "sensors", "command", "pass", "metrics",
             "modes", "nav", "fbw", "aoa", "waypoint", "rc",
             "upset",  # fault campaign (issue 7)
-            "attitude", "sensor_model", "estimator")  # sensor-level SIL (issue 13)
+            "attitude", "sensor_model", "estimator",  # sensor-level SIL (issue 13)
+            "guidance")
 COMMAND_KEYS = ("t_s", "label", "turn_rate_deg_s", "pitch", "altitude_m", "climb_m_s",
                 "airspeed_m_s",
                 "throttle", "inverted", "pitch_mode", "gps")
@@ -741,7 +745,7 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
 
     att = _table(src, "attitude", doc.get("attitude", {}))
     _check_keys(src, "attitude", att, ("source",))
-    sc.attitude_source = _str(src, "attitude.source", att.get("source", "truth"),
+    sc.attitude_source = _str(src, "attitude.source", att.get("source", "estimate"),
                               ATTITUDE_SOURCES)
     sc.sensor_model = _table(src, "sensor_model", doc.get("sensor_model", {}))
     try:  # the sensor model names a bad key itself
@@ -755,6 +759,12 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
             unit = ESTIMATOR_SPELLINGS.get(name, ("", params.ESTIMATOR_BY_NAME[name].unit))[1]
             sc.estimator[k] = _table_value(src, "estimator." + k, est[k],
                                            params.ESTIMATOR_BY_NAME[name], factor, unit)
+    # [guidance]: the guidance's rows of the parameter table, by name, in its units
+    gd = _table(src, "guidance", doc.get("guidance", {}))
+    _check_keys(src, "guidance", gd, tuple(params.GUIDANCE_BY_NAME))
+    for k, row in params.GUIDANCE_BY_NAME.items():
+        if k in gd:
+            sc.guidance[k] = _table_value(src, "guidance." + k, gd[k], row)
 
     sens = _table(src, "sensors", doc.get("sensors", {}))
     _check_keys(src, "sensors", sens, SENSOR_KEYS)

@@ -59,6 +59,9 @@ COLUMNS = (
     "est_bias_x_deg_s", "est_bias_y_deg_s", "est_bias_z_deg_s", "est_flags",
     "attitude_error_deg", "heading_error_deg", "gps_on", "true_bias_x_deg_s",
     "true_bias_y_deg_s", "true_bias_z_deg_s",
+    # the airspeed the law was given: the pitot's, or the GPS ground speed when
+    # the firmware judges the pitot dead (fw_step.c navigation)
+    "law_airspeed_m_s",
 )
 MODE_NAMES = ("manual", "fbw", "waypoint", "rth")
 MODE_THRESHOLDS_US = (1250, 1750, 2100)  # modes.h defaults (the board uses them)
@@ -213,6 +216,7 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, Any]:
         "trim_rudder": trims["rudder"],
         "control_rate_hz": sc.control_rate_hz,
         "estimator": estimator_config(sc),
+        "guidance": dict(sc.guidance),
     }
 
 
@@ -564,6 +568,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             _angle_deg((a.est_x, a.est_y, a.est_z), (x, y, z)),
             _wrap180(a.est_yaw_deg - math.degrees(psi)), float(gps_on),
             *(math.degrees(b_) for b_ in model_bias(model, imu_bias)),
+            a.nav_airspeed_m_s,
         )
         if steady_wind:
             # JSBSim's run_ic and trim reset atmosphere/wind-*-fps, so the

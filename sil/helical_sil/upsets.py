@@ -107,7 +107,7 @@ def generate(aircraft: str, count: int, seed: int,
 
 def scenario_toml(aircraft: str, up: Upset, index: int, seed: int, altitude_m: float,
                   duration_s: float, floor_m: float, cruise_m_s: float,
-                  pitch_mode: str = "earth_frame", attitude: str = "truth") -> str:
+                  pitch_mode: str = "earth_frame", attitude: str = "estimate") -> str:
     """The scenario file of one upset (flown by `run` like any other)."""
     return f"""# Upset {index} of the {aircraft} campaign (python -m helical_sil upsets, seed {seed}).
 # Trimmed at {altitude_m:g} m / {cruise_m_s:g} m/s, then released untrimmed at [upset];
@@ -247,7 +247,7 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
                  duration_s: float = DEFAULT_DURATION_S, floor_m: float = DEFAULT_FLOOR_M,
                  jobs: int = 1, plots: bool = False,
                  known_failures: list[str] | None = None,
-                 pitch_mode: str = "earth_frame", attitude: str = "truth") -> tuple[int, str]:
+                 pitch_mode: str = "earth_frame", attitude: str = "estimate") -> tuple[int, str]:
     """Write the scenario files, fly them, write summary.md / summary.json.
     known_failures ("AIRCRAFT:INDEX") are upsets that fail on a known library
     defect: still failures in every table and fraction, but they do not count

@@ -145,7 +145,8 @@ def _fake_run(dcm: np.ndarray, pitch: np.ndarray, h: np.ndarray) -> SimpleNamesp
     n = len(h)
     tel = {"t_s": np.arange(n) / 40.0, "dcm_x": dcm[:, 0], "dcm_y": dcm[:, 1],
            "dcm_z": dcm[:, 2], "pitch_cmd": pitch, "turn_rate_used_deg_s": np.zeros(n),
-           "sens_airspeed_m_s": np.full(n, 50.0), "inverted": np.zeros(n),
+           "sens_airspeed_m_s": np.full(n, 50.0), "law_airspeed_m_s": np.full(n, 50.0),
+           "inverted": np.zeros(n),
            "altitude_m": h, "phi_deg": np.zeros(n), "airspeed_m_s": np.full(n, 50.0)}
     sc = SimpleNamespace(gains={"v_min": 5.0, "max_tilt": 4.0}, control_rate_hz=40)
     return SimpleNamespace(telemetry=tel, scenario=sc)

@@ -41,7 +41,9 @@ def test_python_reads_the_table_as_the_compiler_did(board_lib: str) -> None:
     as compiled into the board library (sil_param_info) - the two readers of
     params.def agree, and a row the C side lacks (or adds) fails here."""
     c = compiled_table(board_lib)
-    for group, rows in (("LAW", params.LAW), ("DCM", params.ESTIMATOR)):
+    assert len(params.GUIDANCE) >= 5
+    for group, rows in (("LAW", params.LAW), ("DCM", params.ESTIMATOR),
+                        ("GUIDE", params.GUIDANCE)):
         assert [r["name"] for r in c[group]] == [p.name for p in rows]
         for r, p in zip(c[group], rows):
             assert r["unit"] == p.unit and r["format"] == p.fmt.name, p.name
@@ -122,6 +124,10 @@ def _scenario(tmp_path: Path, extra: str) -> Path:
      "'estimator.gps_latency_s' = 0.6 is outside [0, 0.5] (s; the table's gps_latency in "
      "[0, 500] (ms, uint16))"),
     ("[estimator]\ncentripetal = 1.5", "'estimator.centripetal' = 1.5 is not a whole number"),
+    ("[guidance]\nturn_trim_max = 0.6",
+     "'guidance.turn_trim_max' = 0.6 is outside [0, 0.5] (ratio, Q16)"),
+    ("[guidance]\nturn_trim = 2", "'guidance.turn_trim' = 2 is outside [0, 1] (0/1, uint8)"),
+    ("[guidance]\nturn_trim_gain = 1", "turn_trim_gain"),
 ])
 def test_scenario_errors_quote_the_tables_bounds(tmp_path: Path, extra: str,
                                                  message: str) -> None:
@@ -168,3 +174,19 @@ def test_malformed_rows_are_refused() -> None:
                      ('X(A, a, a, "u", Q16, 0, 1, 0)', "9 columns")):
         with pytest.raises(params.TableError, match=why):
             params.parse(head + bad + "\n")
+
+
+def test_the_guidance_reaches_the_board_and_its_refusal_names_the_row(tmp_path: Path,
+                                                                      board_lib: str) -> None:
+    """[guidance] values go to the board in the table's units; the board
+    itself refuses a value beyond a row, quoting it."""
+    from helical_sil import sim
+    sc = load_scenario(_scenario(tmp_path, "[guidance]\nturn_trim = 0\nturn_trim_tau = 9\n"))
+    cfg = dict(sim.board_config(sc, {"aileron": 0.0, "elevator": 0.0, "rudder": 0.0,
+                                     "throttle": 0.5}))
+    assert cfg["guidance"] == {"turn_trim": 0.0, "turn_trim_tau": 9.0}
+    Board(cfg, board_lib)  # accepted
+    cfg["guidance"] = {"turn_trim_hold": 11.0}
+    with pytest.raises(BoardError) as e:
+        Board(cfg, board_lib)
+    assert "guidance.turn_trim_hold = 11 is outside [0, 10] (s, Q16)" in str(e.value)

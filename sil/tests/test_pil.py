@@ -72,13 +72,13 @@ def test_config_frames_have_the_documented_lengths() -> None:
         "alt_kv_pitch_per_m_s", "alt_protect_tau_s")}
     cfg.update(control_rate_hz=40, law={"schedule": 1})
     frames = pil.config_frames(cfg)
-    # protocol 5 (docs/hil-protocol.md): CFG_LAW 50, CFG_EST 43 with today's table
-    assert [f[2] for f in frames] == [50, 52, 22, 58, 43]
+    # protocol 6 (docs/hil-protocol.md): CFG_LAW 50, CFG_EST 60 with today's table
+    assert [f[2] for f in frames] == [50, 52, 22, 58, 60]
     assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13, 0x15]
 
 
 def test_cfg_law_and_cfg_est_follow_the_table() -> None:
-    """The documented offsets of protocol 5, from the table's order and widths:
+    """The documented offsets of protocol 6, from the table's order and widths:
     each value lands where hil_fw.c's generated parser reads it."""
     law = {"kp_aileron": 2.0, "kd_rudder": 0.5, "v_ref": 110.0, "v_min": 30.0,
            "schedule": 1, "max_tilt": 2.5, "pitch_mode": 1}
@@ -88,16 +88,23 @@ def test_cfg_law_and_cfg_est_follow_the_table() -> None:
     assert i32(36) == 11000 and i32(40) == 3000
     assert p[44] == 1 and i32(45) == int(2.5 * 65536) and p[49] == 1 and len(p) == 50
     est = {"imu_rate_hz": 120, "gyro_bias_max": 0.1, "gps_min_speed": -1.5, "gps_latency": 80}
-    p = pil.cfg_est_payload({"control_rate_hz": 40, "estimator": est})
+    guide = {"turn_trim": 0, "turn_trim_tau": 7.5, "turn_trim_hold": 3}
+    p = pil.cfg_est_payload({"control_rate_hz": 40, "estimator": est, "guidance": guide})
     assert int.from_bytes(p[0:2], "little") == 120
     assert int.from_bytes(p[2:6], "little", signed=True) == 26214  # kp_rollpitch 0.4
     assert int.from_bytes(p[18:22], "little", signed=True) == 6554  # 0.1 rad/s
     assert int.from_bytes(p[34:36], "little", signed=True) == -150
     assert p[36] == 2 and int.from_bytes(p[37:39], "little") == 80
     assert int.from_bytes(p[39:41], "little") == 3 and int.from_bytes(p[41:43], "little") == 24
+    # the guidance's rows after the timing: turn_trim 0, tau 7.5 s, max 0.1 (the
+    # default), min_rate 0.035 rad/s (the default), hold 3 s
+    i32 = lambda o: int.from_bytes(p[o:o + 4], "little", signed=True)  # noqa: E731
+    assert p[43] == 0 and i32(44) == int(7.5 * 65536) and i32(48) == 6554
+    assert i32(52) == 2294 and i32(56) == 3 * 65536 and len(p) == 60
     # every row of the table is in the frame, in order: offsets are the running sum
     assert pil.LEN_CFG_LAW == sum(q.fmt.nbytes for q in params.LAW)
-    assert pil.LEN_CFG_EST == sum(q.fmt.nbytes for q in params.ESTIMATOR) + 4
+    assert pil.LEN_CFG_EST == (sum(q.fmt.nbytes for q in params.ESTIMATOR) + 4
+                               + sum(q.fmt.nbytes for q in params.GUIDANCE))
 
 
 # --- the firmware under QEMU -----------------------------------------------------

@@ -174,6 +174,9 @@ static void test_turn_teaches_the_wind_and_straight_flight_keeps_the_heading(voi
     TEST_ASSERT_TRUE(fabs(r.heading_err_deg) < 1.0);
     TEST_ASSERT_TRUE(r.tilt_worst_deg < 8.0);
     TEST_ASSERT_TRUE(r.tilt_end_deg < 1.0);
+    /* the heading is known once the wind is (the turn-rate trim waits for it) */
+    TEST_ASSERT_EQUAL_UINT8(1u, st.wind.solved);
+    TEST_ASSERT_BITS_HIGH(HT_DCM_F_HEADING_KNOWN, st.flags);
 }
 
 /*
@@ -188,6 +191,7 @@ static void test_straight_flight_learns_no_wind(void)
     const result_t r = fly(&pr);
     TEST_ASSERT_EQUAL_INT32(0, st.wind.w_q8[0]);
     TEST_ASSERT_EQUAL_INT32(0, st.wind.w_q8[1]);
+    TEST_ASSERT_BITS_LOW(HT_DCM_F_HEADING_KNOWN, st.flags); /* the crab is unknown */
     printf("  straight flight: heading %.2f deg from the truth, the track %.2f deg\n",
            r.heading_err_deg, r.track_minus_heading_deg);
     TEST_ASSERT_FLOAT_WITHIN(0.5, r.track_minus_heading_deg, r.heading_err_deg);
