@@ -18,11 +18,11 @@ cd "$(dirname "$0")/.."
 
 board_dirs="boards/common boards/stm32f4 boards/dspic33 boards/sil"
 SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c firmware/*.c boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
-    boards/dspic33/dspic33_oc_pwm.c)"}
+    boards/dspic33/dspic33_oc_pwm.c boards/devices/*.c)"}
 SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
 SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}
 SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h firmware/*.h boards/stm32f4/*.h \
-    boards/dspic33/*.h boards/sil/*.h)"}
+    boards/dspic33/*.h boards/sil/*.h boards/devices/*.h)"}
 SA_INCLUDES=${SA_INCLUDES:-"include src firmware $board_dirs boards/devices"}
 SA_TIDY_BUILD_DIR=${SA_TIDY_BUILD_DIR:-build/host}
 SA_TIDY_CROSS_BUILD_DIR=${SA_TIDY_CROSS_BUILD_DIR:-build/stm32f4}

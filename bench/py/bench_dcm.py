@@ -35,7 +35,8 @@ CPI = {"M0": 1.3, "M4": 1.0}
 
 # the estimator's sources (src/): the ARM build checks they compiled, the
 # host build compiles them
-DCM_SOURCES = ("dcm.c", "dcm_gps_accel.c", "dcm_wind.c", "dcm_params.c", "dcm_trig.c", "q14.c")
+DCM_SOURCES = ("dcm.c", "dcm_gps_accel.c", "dcm_wind.c", "dcm_params.c", "dcm_trig.c", "q14.c",
+               "param_rows.c")
 
 
 def build(core: B.Core, opt: str, outroot: Path) -> Path:

@@ -25,7 +25,6 @@ int32_t ms4525_counts_to_mpa(uint16_t counts)
     return (int32_t)mpa; /* |mpa| <= 16383 * 526.1 */
 }
 
-// cppcheck-suppress misra-c2012-8.7 ; D-8.7 (boards): public, called by the host test
 int16_t ms4525_airspeed_cm_s(int32_t dp_mpa)
 {
     if (dp_mpa <= 0) {

@@ -29,7 +29,6 @@ static int16_t le_s16(const uint8_t *p)
     return (int16_t)s;
 }
 
-// cppcheck-suppress misra-c2012-8.7 ; D-8.7 (boards): public, called by the host test
 void bmp280_parse_calib(const uint8_t raw[BMP280_CALIB_LEN], bmp280_calib_t *cal)
 {
     if (raw == NULL || cal == NULL) {
@@ -139,7 +138,6 @@ static bmp280_status_t press_q24_8_of(const bmp280_calib_t *c, int32_t t_fine, i
     return BMP280_OK;
 }
 
-// cppcheck-suppress misra-c2012-8.7 ; D-8.7 (boards): public, called by the host test
 bmp280_status_t bmp280_compensate(const bmp280_calib_t *cal, int32_t adc_t, int32_t adc_p,
                                   bmp280_reading_t *out)
 {

@@ -6,16 +6,15 @@
 
 #include <stddef.h>
 
-/* UI filter bandwidth codes per imu_lpf_t (DS 14.x GYRO_ACCEL_CONFIG0:
- * 1 = max(400 Hz, ODR) / 4, 4 = ODR / 10, 6 = ODR / 20, 7 = ODR / 40). */
-static const uint8_t k_filter_bw[IMU_LPF_COUNT] = {1u, 4u, 6u, 7u};
-
 /* The invalid-sample mark: the data registers hold -32768 (0x8000) for a
  * sensor that is off or has no sample yet (DS 14.x INTF_CONFIG0). */
 #define ICM42688P_INVALID_SAMPLE (-32768)
 
 uint8_t icm42688p_filter_bw(uint8_t lpf)
 {
+    /* UI filter bandwidth codes per imu_lpf_t (DS 14.x GYRO_ACCEL_CONFIG0:
+     * 1 = max(400 Hz, ODR) / 4, 4 = ODR / 10, 6 = ODR / 20, 7 = ODR / 40). */
+    static const uint8_t k_filter_bw[IMU_LPF_COUNT] = {1u, 4u, 6u, 7u};
     if (lpf >= (uint8_t)IMU_LPF_COUNT) {
         return 0xFFu;
     }

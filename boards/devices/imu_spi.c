@@ -6,6 +6,9 @@
 #include "imu_spi.h"
 
 #include <stddef.h>
+#include <string.h>
+
+#include "helical/q14.h"
 
 #include "icm42688p.h"
 #include "mpu6000.h"
@@ -39,8 +42,10 @@ imu_status_t imu_spi_read_regs(const imu_spi_bus_t *bus, uint8_t reg, uint8_t *d
     if (n == 0u || n > IMU_MAX_BURST || reg > 0x7Fu) {
         return IMU_ERR_RANGE;
     }
-    uint8_t tx[IMU_MAX_BURST + 1u] = {0u};
-    uint8_t rx[IMU_MAX_BURST + 1u] = {0u};
+    uint8_t tx[IMU_MAX_BURST + 1u];
+    uint8_t rx[IMU_MAX_BURST + 1u];
+    (void)memset(tx, 0, sizeof tx);
+    (void)memset(rx, 0, sizeof rx);
     tx[0] = reg | IMU_SPI_READ; /* the rest are dummies: the chip ignores MOSI now */
     const uint32_t len32 = (uint32_t)n + 1u;
     if (bus->xfer(bus->ctx, tx, rx, (uint16_t)len32) != 0) {
@@ -139,7 +144,7 @@ q16_t imu_gyro_q16_from_raw(int16_t raw)
     const int32_t frac_q16 = r * IMU_GYRO_K_FRAC_Q16;
     /* one rounding, to nearest with ties up (q14.h's convention): the integer
      * part r * 69 is exact */
-    return r * IMU_GYRO_K_INT + ((frac_q16 + 0x8000) >> 16);
+    return r * IMU_GYRO_K_INT + q_rshift_round(frac_q16, 16u);
 }
 
 q16_t imu_accel_q16_from_raw(int16_t raw)
@@ -148,19 +153,18 @@ q16_t imu_accel_q16_from_raw(int16_t raw)
     return r * IMU_ACCEL_K;
 }
 
-/* For each alignment and body axis: the chip axis it takes and its sign
- * (the table in imu_spi.h). */
-static const uint8_t k_align_src[IMU_ALIGN_COUNT][3] = {
-    {0u, 1u, 2u}, {1u, 0u, 2u}, {0u, 1u, 2u}, {1u, 0u, 2u},
-    {0u, 1u, 2u}, {1u, 0u, 2u}, {0u, 1u, 2u}, {1u, 0u, 2u},
-};
-static const int8_t k_align_sign[IMU_ALIGN_COUNT][3] = {
-    {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},
-    {1, 1, 1},   {1, -1, 1},   {-1, -1, 1}, {-1, 1, 1},
-};
-
 void imu_align_apply(uint8_t align, const q16_t in[3], q16_t out[3])
 {
+    /* For each alignment and body axis: the chip axis it takes and its sign
+     * (the table in imu_spi.h). */
+    static const uint8_t k_align_src[IMU_ALIGN_COUNT][3] = {
+        {0u, 1u, 2u}, {1u, 0u, 2u}, {0u, 1u, 2u}, {1u, 0u, 2u},
+        {0u, 1u, 2u}, {1u, 0u, 2u}, {0u, 1u, 2u}, {1u, 0u, 2u},
+    };
+    static const int8_t k_align_sign[IMU_ALIGN_COUNT][3] = {
+        {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},
+        {1, 1, 1},   {1, -1, 1},   {-1, -1, 1}, {-1, 1, 1},
+    };
     if (in == NULL || out == NULL) {
         return;
     }

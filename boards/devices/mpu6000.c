@@ -6,12 +6,11 @@
 
 #include <stddef.h>
 
-/* DLPF_CFG per imu_lpf_t (RM, CONFIG register 26 table: 1 -> 188 Hz gyro, 2 -> 98, 3 -> 42,
- * 4 -> 20; any of 1..6 makes the gyro output rate 1 kHz). */
-static const uint8_t k_dlpf_cfg[IMU_LPF_COUNT] = {1u, 2u, 3u, 4u};
-
 uint8_t mpu6000_dlpf_cfg(uint8_t lpf)
 {
+    /* DLPF_CFG per imu_lpf_t (RM, CONFIG register 26 table: 1 -> 188 Hz gyro, 2 -> 98,
+     * 3 -> 42, 4 -> 20; any of 1..6 makes the gyro output rate 1 kHz). */
+    static const uint8_t k_dlpf_cfg[IMU_LPF_COUNT] = {1u, 2u, 3u, 4u};
     if (lpf >= (uint8_t)IMU_LPF_COUNT) {
         return 0xFFu;
     }
@@ -109,9 +108,9 @@ imu_status_t mpu6000_read_raw(const imu_spi_bus_t *bus, int16_t accel[3], int16_
         return IMU_ERR_DATA;
     }
     /* RM, registers 59-72: ACCEL_XOUT_H .. GYRO_ZOUT_L, high byte first */
-    for (uint8_t i = 0u; i < 3u; ++i) {
+    for (size_t i = 0u; i < 3u; ++i) {
         accel[i] = imu_be16(&b[2u * i]);
-        gyro[i] = imu_be16(&b[8u + 2u * i]);
+        gyro[i] = imu_be16(&b[8u + (2u * i)]);
     }
     *temp = imu_be16(&b[6]);
     return IMU_OK;
