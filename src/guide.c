@@ -6,6 +6,8 @@
 
 #include "helical/guide.h"
 
+#include "q_inline.h"
+
 void ht_guide_reset(ht_guide_state_t *s)
 {
     if (s != NULL) {
@@ -79,9 +81,7 @@ static int32_t learn(const ht_guide_t *g, int32_t k_q30, int32_t cmd, int32_t me
     const int32_t ratio_q30 = q_mul32(signed_diff, m, 9u + e);
     /* per tau_ticks steps, rounded half away from zero: a truncation would
      * drift k by up to an LSB a step in a steady turn */
-    const int32_t t = g->tau_ticks;
-    const int32_t step_q30 =
-        (ratio_q30 >= 0) ? ((ratio_q30 + (t / 2)) / t) : -(((t / 2) - ratio_q30) / t);
+    const int32_t step_q30 = qi_div_round(ratio_q30, g->tau_ticks);
     return q_clamp32(k_q30 + step_q30, -g->max_q30, g->max_q30);
 }
 

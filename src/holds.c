@@ -5,6 +5,8 @@
  */
 #include "helical/holds.h"
 
+#include "q_inline.h"
+
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -16,24 +18,11 @@
 #define HOLD_AIRSPEED_MAX_CM_S 32767L
 #define HOLD_TAU_MAX_MS        60000u
 
-/* a / b rounded to nearest, ties away from zero; b in [1, 60000], so the
- * remainder test cannot overflow. */
-static int32_t div_round_s32(int32_t a, int32_t b)
-{
-    int32_t q = a / b;
-    int32_t r = a % b;
-    int32_t r_abs = (r < 0) ? -r : r;
-    if ((2 * r_abs) >= b) {
-        q += (a < 0) ? -1 : 1;
-    }
-    return q;
-}
-
 /* A length or speed in cm (or cm/s), already bounded to +-1e6, as metres
  * (or m/s) in Q8: round(v * 256 / 100) = round(v * 64 / 25). */
 static int32_t cm_to_m_q8(int32_t v_cm)
 {
-    return div_round_s32(v_cm * 64, 25);
+    return qi_div_round(v_cm * 64, 25);
 }
 
 static int gain_ok(q16_t g)
@@ -85,13 +74,13 @@ static bool alt_airspeed(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s,
             s->airspeed_valid = 1u;
         } else {
             /* tau <= 60000 ms, rate <= 1000 Hz: n <= 60000 */
-            int32_t n = div_round_s32((int32_t)p->protect_tau_ms * (int32_t)p->rate_hz, 1000);
+            int32_t n = qi_div_round((int32_t)p->protect_tau_ms * (int32_t)p->rate_hz, 1000);
             if (n < 1) {
                 n = 1;
             }
             /* saturating: the state is the caller's */
             s->airspeed_q8 =
-                q_add_sat32(s->airspeed_q8, div_round_s32(q_sub_sat32(v_q8, s->airspeed_q8), n));
+                q_add_sat32(s->airspeed_q8, qi_div_round(q_sub_sat32(v_q8, s->airspeed_q8), n));
         }
     }
     *v_cm_s = q_clamp32(q_rshift_round(s->airspeed_q8, 8), 0, HOLD_AIRSPEED_MAX_CM_S);
@@ -141,7 +130,7 @@ static q16_t alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s
     const int32_t d_term_q16 = q_mul32(p->kd_pitch_per_m_s, climb_m_q8, 8);
     /* Q16 * Q8 >> 4 = Q20, per step */
     const int32_t inc_q20 =
-        div_round_s32(q_mul32(p->ki_pitch_per_m_s, err_m_q8, 4), (int32_t)p->rate_hz);
+        qi_div_round(q_mul32(p->ki_pitch_per_m_s, err_m_q8, 4), (int32_t)p->rate_hz);
 
     const int32_t max_i_q20 = p->max_integral_pitch * 16; /* <= 4 * 2^20 */
     int32_t integral_q20 = s->integral_q20[idx];
@@ -210,7 +199,7 @@ q14_t ht_speed_hold_step(const ht_speed_hold_params_t *p, ht_speed_hold_state_t 
     const int32_t p_term_q16 = q_mul32(p->kp_throttle_per_m_s, err_m_q8, 8);
     const int32_t ff_term_q16 = q_mul32(p->kff_throttle_per_pitch, pitch_q16, 16);
     const int32_t inc_q20 =
-        div_round_s32(q_mul32(p->ki_throttle_per_m, err_m_q8, 4), (int32_t)p->rate_hz);
+        qi_div_round(q_mul32(p->ki_throttle_per_m, err_m_q8, 4), (int32_t)p->rate_hz);
 
     const int32_t lo_q16 = (int32_t)p->throttle_min * 4;
     const int32_t hi_q16 = (int32_t)p->throttle_max * 4;

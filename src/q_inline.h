@@ -445,4 +445,18 @@ static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
     return r;
 }
 
+/* a / b rounded to nearest, ties away from zero, for b in [1, 2^30) (the
+ * remainder test cannot overflow): the holds' integrators and the turn-rate
+ * trim's step. */
+static inline int32_t qi_div_round(int32_t a, int32_t b)
+{
+    int32_t q = a / b;
+    const int32_t r = a % b;
+    const int32_t r_abs = (r < 0) ? -r : r;
+    if ((2 * r_abs) >= b) {
+        q += (a < 0) ? -1 : 1;
+    }
+    return q;
+}
+
 #endif /* HELICAL_Q_INLINE_H */

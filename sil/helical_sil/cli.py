@@ -144,15 +144,18 @@ def _summary_row(m: dict[str, Any]) -> dict[str, str]:
     return row
 
 
-def format_table(rows: list[dict[str, str]]) -> str:
-    heads = [h for _k, h, _f in SUMMARY_COLS]
-    keys = [k for k, _h, _f in SUMMARY_COLS]
-    widths = [max(len(h), *(len(r.get(k, "")) for r in rows)) for k, h in zip(keys, heads)]
+def markdown_table(heads: list[str], rows: list[list[str]]) -> str:
+    """A Markdown table, each column as wide as its widest cell."""
+    widths = [max([len(h), *(len(r[i]) for r in rows)]) for i, h in enumerate(heads)]
     line = "| " + " | ".join(h.ljust(w) for h, w in zip(heads, widths)) + " |"
     sep = "|" + "|".join("-" * (w + 2) for w in widths) + "|"
-    body = ["| " + " | ".join(r.get(k, "").ljust(w) for k, w in zip(keys, widths)) + " |"
-            for r in rows]
+    body = ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |" for r in rows]
     return "\n".join([line, sep, *body])
+
+
+def format_table(rows: list[dict[str, str]]) -> str:
+    return markdown_table([h for _k, h, _f in SUMMARY_COLS],
+                          [[r.get(k, "") for k, _h, _f in SUMMARY_COLS] for r in rows])
 
 
 def _progress(i: int, n: int, name: str, t0: float) -> None:
@@ -346,13 +349,9 @@ def compare_batches(dirs: list[Path]) -> str:
     titles = {k: h for k, h, _f in SUMMARY_COLS}
     head = ["scenario"] + [f"{titles[k]} {h}" for k in BATCH_COMPARE_COLS for h in heads]
     rows = [[n] + [c[n].get(k, "-") for k in BATCH_COMPARE_COLS for c in cols] for n in names]
-    widths = [max(len(head[i]), *(len(r[i]) for r in rows)) for i in range(len(head))]
-    out = ["| " + " | ".join(h.ljust(w) for h, w in zip(head, widths)) + " |",
-           "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
-    out += ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |" for r in rows]
     passed = [sum(c[n]["result"].startswith("PASS") for n in names) for c in cols]
-    out.append(", ".join(f"{h}: {p}/{len(names)} passed" for h, p in zip(heads, passed)))
-    return "\n".join(out)
+    return markdown_table(head, rows) + "\n" + ", ".join(
+        f"{h}: {p}/{len(names)} passed" for h, p in zip(heads, passed))
 
 
 def cmd_compare(args: argparse.Namespace) -> int:
@@ -362,8 +361,6 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if all((d / "summary.json").is_file() for d in dirs):
         print(compare_batches(dirs))
         return 0
-    if len(dirs) < 2:
-        raise UsageError("compare needs two or more run folders, or batch folders")
     runs = [_load_metrics(Path(d) / "metrics.json") for d in args.runs]
     keys = tuple(args.metrics) if args.metrics else COMPARE_KEYS
     labels = [s["label"] for s in runs[0]["segments"]]
@@ -376,13 +373,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
             if all(v is None for v in vals):
                 continue
             rows.append([lab, k] + [_cell(v) for v in vals])
-    heads = ["segment", "metric"] + names
-    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
-              for i, h in enumerate(heads)]
-    print("| " + " | ".join(h.ljust(w) for h, w in zip(heads, widths)) + " |")
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for r in rows:
-        print("| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |")
+    print(markdown_table(["segment", "metric"] + names, rows))
     return 0
 
 
