@@ -102,7 +102,7 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
 
 /* --- configuration --------------------------------------------------------- */
 
-/* --- CFG_LAW and CFG_EST: the parameter table's rows in order ------------ */
+/* --- CFG_LAW, CFG_EST, CFG_ALT, CFG_SPD: the table's rows in order ------- */
 
 /* One field of a table format on the wire (little-endian). */
 #define GET_Q16(p)     hil_get_i32(p)
@@ -110,11 +110,15 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
 #define GET_CM16(p)    hil_get_i16(p)
 #define GET_U8(p)      (*(p))
 #define GET_U16(p)     hil_get_u16(p)
+#define GET_Q14(p)     hil_get_i16(p)
+#define GET_MS16(p)    hil_get_u16(p)
 #define PUT_Q16(p, v)  hil_put_i32((p), (v))
 #define PUT_CM32(p, v) hil_put_i32((p), (v))
 #define PUT_CM16(p, v) hil_put_i16((p), (v))
 #define PUT_U8(p, v)   (*(p) = (v))
 #define PUT_U16(p, v)  hil_put_u16((p), (v))
+#define PUT_Q14(p, v)  hil_put_i16((p), (v))
+#define PUT_MS16(p, v) hil_put_u16((p), (v))
 
 #define ROW_GET(id, name, field, unit, fmt, lo, hi, def, desc)                                     \
     s->field = GET_##fmt(&p[off]);                                                                 \
@@ -123,18 +127,14 @@ static void ack(hil_fw_t *h, uint8_t status, uint8_t block, uint8_t detail)
     PUT_##fmt(&p[off], s->field);                                                                  \
     off += HT_PFMT_BYTES_##fmt;
 
-/* the guidance's rows (in CFG_EST, after the timing) */
-#define GUIDE_GET(id, name, field, unit, fmt, lo, hi, def, desc)                                   \
-    g->field = GET_##fmt(&p[off]);                                                                 \
-    off += HT_PFMT_BYTES_##fmt;
-#define GUIDE_PUT(id, name, field, unit, fmt, lo, hi, def, desc)                                   \
-    PUT_##fmt(&p[off], g->field);                                                                  \
-    off += HT_PFMT_BYTES_##fmt;
-
 _Static_assert(HIL_LEN_CFG_LAW <= HIL_PAYLOAD_MAX,
                "the law's rows no longer fit one CFG_LAW frame: split it (docs/parameters.md)");
 _Static_assert(HIL_LEN_CFG_EST <= HIL_PAYLOAD_MAX,
                "the estimator's rows no longer fit one CFG_EST frame: split it");
+_Static_assert(HIL_LEN_CFG_ALT <= HIL_PAYLOAD_MAX,
+               "the altitude hold's rows no longer fit one CFG_ALT frame: split it");
+_Static_assert(HIL_LEN_CFG_SPD <= HIL_PAYLOAD_MAX,
+               "the airspeed hold's rows no longer fit one CFG_SPD frame: split it");
 
 void hil_cfg_law_write(uint8_t *p, const ht_params_t *s)
 {
@@ -150,9 +150,22 @@ void hil_cfg_law_parse(const uint8_t *p, ht_params_t *s)
     (void)off;
 }
 
+/* The guidance's rows, in CFG_EST after the timing (ROW_* read s). */
+static unsigned guide_put(uint8_t *p, unsigned off, const ht_guide_params_t *s)
+{
+    HT_PARAMS_GUIDE(ROW_PUT)
+    return off;
+}
+
+static unsigned guide_get(const uint8_t *p, unsigned off, ht_guide_params_t *s)
+{
+    HT_PARAMS_GUIDE(ROW_GET)
+    return off;
+}
+
 /* The estimator and the IMU timing, as the SIL host board sets them (the
  * divider is given, not derived: fw_init checks that it agrees with the
- * rates). */
+ * rates), then the guidance. */
 void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
 {
     const ht_dcm_params_t *s = &c->dcm;
@@ -160,10 +173,7 @@ void hil_cfg_est_write(uint8_t *p, const fw_config_t *c)
     HT_PARAMS_DCM(ROW_PUT)
     hil_put_u16(&p[off], c->control_divider);
     hil_put_u16(&p[off + 2u], c->imu_timeout_samples);
-    off += 4u;
-    const ht_guide_params_t *g = &c->guide;
-    HT_PARAMS_GUIDE(GUIDE_PUT)
-    (void)off;
+    (void)guide_put(p, off + 4u, &c->guide);
 }
 
 void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c)
@@ -173,10 +183,45 @@ void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c)
     HT_PARAMS_DCM(ROW_GET)
     c->control_divider = hil_get_u16(&p[off]);
     c->imu_timeout_samples = hil_get_u16(&p[off + 2u]);
-    off += 4u;
-    ht_guide_params_t *g = &c->guide;
-    HT_PARAMS_GUIDE(GUIDE_GET)
-    (void)off;
+    (void)guide_get(p, off + 4u, &c->guide);
+}
+
+/* The altitude hold's rows, its rate and the initial integrators. */
+void hil_cfg_alt_write(uint8_t *p, const fw_config_t *c)
+{
+    const ht_alt_hold_params_t *s = &c->modes.alt;
+    unsigned off = 0u;
+    HT_PARAMS_ALT(ROW_PUT)
+    hil_put_u16(&p[off], s->rate_hz);
+    hil_put_i32(&p[off + 2u], c->alt_integral_q20[0]);
+    hil_put_i32(&p[off + 6u], c->alt_integral_q20[1]);
+}
+
+void hil_cfg_alt_parse(const uint8_t *p, fw_config_t *c)
+{
+    ht_alt_hold_params_t *s = &c->modes.alt;
+    unsigned off = 0u;
+    HT_PARAMS_ALT(ROW_GET)
+    s->rate_hz = hil_get_u16(&p[off]);
+    c->alt_integral_q20[0] = hil_get_i32(&p[off + 2u]);
+    c->alt_integral_q20[1] = hil_get_i32(&p[off + 6u]);
+}
+
+/* The airspeed hold's rows and its rate. */
+void hil_cfg_spd_write(uint8_t *p, const fw_config_t *c)
+{
+    const ht_speed_hold_params_t *s = &c->modes.speed;
+    unsigned off = 0u;
+    HT_PARAMS_SPEED(ROW_PUT)
+    hil_put_u16(&p[off], s->rate_hz);
+}
+
+void hil_cfg_spd_parse(const uint8_t *p, fw_config_t *c)
+{
+    ht_speed_hold_params_t *s = &c->modes.speed;
+    unsigned off = 0u;
+    HT_PARAMS_SPEED(ROW_GET)
+    s->rate_hz = hil_get_u16(&p[off]);
 }
 
 static void cfg_law(hil_fw_t *h, const uint8_t *p)
@@ -187,35 +232,13 @@ static void cfg_law(hil_fw_t *h, const uint8_t *p)
 
 static void cfg_alt(hil_fw_t *h, const uint8_t *p)
 {
-    ht_alt_hold_params_t *a = &h->cfg.modes.alt;
-    a->kp_pitch_per_m = hil_get_i32(&p[0]);
-    a->ki_pitch_per_m_s = hil_get_i32(&p[4]);
-    a->kd_pitch_per_m_s = hil_get_i32(&p[8]);
-    a->max_pitch = hil_get_i32(&p[12]);
-    a->max_integral_pitch = hil_get_i32(&p[16]);
-    a->max_error_cm = hil_get_i32(&p[20]);
-    a->integral_band_cm = hil_get_i32(&p[24]);
-    a->rate_hz = hil_get_u16(&p[28]);
-    h->cfg.alt_integral_q20[0] = hil_get_i32(&p[30]);
-    h->cfg.alt_integral_q20[1] = hil_get_i32(&p[34]);
-    a->protect_cm_s = hil_get_i32(&p[38]);
-    a->protect_valid_cm_s = hil_get_i32(&p[42]);
-    a->kv_pitch_per_m_s = hil_get_i32(&p[46]);
-    a->protect_tau_ms = hil_get_u16(&p[50]);
+    hil_cfg_alt_parse(p, &h->cfg);
     h->have |= HAVE_ALT;
 }
 
 static void cfg_spd(hil_fw_t *h, const uint8_t *p)
 {
-    ht_speed_hold_params_t *s = &h->cfg.modes.speed;
-    s->throttle_trim = hil_get_i16(&p[0]);
-    s->throttle_min = hil_get_i16(&p[2]);
-    s->throttle_max = hil_get_i16(&p[4]);
-    s->kp_throttle_per_m_s = hil_get_i32(&p[6]);
-    s->ki_throttle_per_m = hil_get_i32(&p[10]);
-    s->kff_throttle_per_pitch = hil_get_i32(&p[14]);
-    s->max_integral_throttle = hil_get_i16(&p[18]);
-    s->rate_hz = hil_get_u16(&p[20]);
+    hil_cfg_spd_parse(p, &h->cfg);
     h->have |= HAVE_SPD;
 }
 
@@ -262,6 +285,11 @@ static void refused(hil_fw_t *h)
     case FW_BAD_MODES:
         block = (fw->modes_bad.field == HT_MODES_P_SPEED_HOLD) ? (uint8_t)HIL_ID_CFG_SPD
                                                                : (uint8_t)HIL_ID_CFG_ALT;
+        if (fw->modes_bad.field == HT_MODES_P_ALT_HOLD ||
+            fw->modes_bad.field == HT_MODES_P_SPEED_HOLD) {
+            /* the row id (ht_alt/speed_param_id_t); its COUNT is rate_hz */
+            detail = (uint8_t)fw->modes_bad.sub;
+        }
         break;
     case FW_BAD_OUTPUT:
         block = (uint8_t)HIL_ID_CFG_OUT;

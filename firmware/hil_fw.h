@@ -30,9 +30,10 @@
 #include "helical/hil_frame.h"
 
 #define HIL_PROTOCOL_VERSION                                                                       \
-    6u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
+    7u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
           5: CFG_LAW and CFG_EST laid out by the parameter table;                                  \
-          6: CFG_EST ends with the guidance's rows */
+          6: CFG_EST ends with the guidance's rows;                                                \
+          7: CFG_ALT and CFG_SPD laid out by the parameter table */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
@@ -57,13 +58,15 @@
 /* Payload lengths. CFG_LAW is the law's rows of the parameter table
  * (include/helical/params.def) in its order, each as wide as its format;
  * CFG_EST the estimator's rows, then u16 control_divider and u16
- * imu_timeout_samples, then the guidance's rows. A new row lengthens its
- * frame by itself. */
+ * imu_timeout_samples, then the guidance's rows; CFG_ALT the altitude
+ * hold's rows, then u16 rate_hz and the two i32 Q20 initial integrators
+ * (upright, inverted); CFG_SPD the airspeed hold's rows, then u16 rate_hz.
+ * A new row lengthens its frame by itself. */
 #define HIL_LEN_CFG_LAW ((uint8_t)(0u HT_PARAMS_LAW(HT_PARAM_X_BYTES)))
 #define HIL_LEN_CFG_EST                                                                            \
     ((uint8_t)(0u HT_PARAMS_DCM(HT_PARAM_X_BYTES) + 4u HT_PARAMS_GUIDE(HT_PARAM_X_BYTES)))
-#define HIL_LEN_CFG_ALT 52u
-#define HIL_LEN_CFG_SPD 22u
+#define HIL_LEN_CFG_ALT ((uint8_t)(0u HT_PARAMS_ALT(HT_PARAM_X_BYTES) + 10u))
+#define HIL_LEN_CFG_SPD ((uint8_t)(0u HT_PARAMS_SPEED(HT_PARAM_X_BYTES) + 2u))
 #define HIL_LEN_CFG_OUT 58u
 #define HIL_LEN_SENSORS 28u
 #define HIL_LEN_STEP    52u
@@ -202,5 +205,11 @@ void hil_cfg_law_parse(const uint8_t *p, ht_params_t *l);
 /* CFG_EST from / into a configuration (dcm, control_divider, imu_timeout_samples) */
 void hil_cfg_est_write(uint8_t *p, const fw_config_t *c);
 void hil_cfg_est_parse(const uint8_t *p, fw_config_t *c);
+/* CFG_ALT and CFG_SPD from / into a configuration (modes.alt with
+ * alt_integral_q20, modes.speed) */
+void hil_cfg_alt_write(uint8_t *p, const fw_config_t *c);
+void hil_cfg_alt_parse(const uint8_t *p, fw_config_t *c);
+void hil_cfg_spd_write(uint8_t *p, const fw_config_t *c);
+void hil_cfg_spd_parse(const uint8_t *p, fw_config_t *c);
 
 #endif /* HT_HIL_FW_H */

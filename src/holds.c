@@ -10,24 +10,14 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define HOLD_GAIN_MAX_Q16      (64L * 65536L)
-#define HOLD_RATIO_MAX_Q16     (4L * 65536L)
-#define HOLD_ERROR_MAX_CM      1000000L
 #define HOLD_CLIMB_MAX_CM_S    100000L
-#define HOLD_RATE_MAX_HZ       1000u
 #define HOLD_AIRSPEED_MAX_CM_S 32767L
-#define HOLD_TAU_MAX_MS        60000u
 
 /* A length or speed in cm (or cm/s), already bounded to +-1e6, as metres
  * (or m/s) in Q8: round(v * 256 / 100) = round(v * 64 / 25). */
 static int32_t cm_to_m_q8(int32_t v_cm)
 {
     return qi_div_round(v_cm * 64, 25);
-}
-
-static int gain_ok(q16_t g)
-{
-    return g >= 0 && g <= HOLD_GAIN_MAX_Q16;
 }
 
 /* --- altitude hold ------------------------------------------------------- */
@@ -37,17 +27,7 @@ ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p)
     if (p == NULL) {
         return HT_HOLD_ERR_NULL;
     }
-    if (!gain_ok(p->kp_pitch_per_m) || !gain_ok(p->ki_pitch_per_m_s) ||
-        !gain_ok(p->kd_pitch_per_m_s) || p->max_pitch <= 0 || p->max_pitch > HOLD_RATIO_MAX_Q16 ||
-        p->max_integral_pitch < 0 || p->max_integral_pitch > HOLD_RATIO_MAX_Q16 ||
-        p->max_error_cm < 100 || p->max_error_cm > HOLD_ERROR_MAX_CM || p->integral_band_cm < 0 ||
-        p->integral_band_cm > p->max_error_cm || p->rate_hz < 1u || p->rate_hz > HOLD_RATE_MAX_HZ ||
-        p->protect_cm_s < 0 || p->protect_cm_s > HOLD_AIRSPEED_MAX_CM_S ||
-        p->protect_valid_cm_s < 0 || p->protect_valid_cm_s > p->protect_cm_s ||
-        !gain_ok(p->kv_pitch_per_m_s) || p->protect_tau_ms > HOLD_TAU_MAX_MS) {
-        return HT_HOLD_ERR_PARAM;
-    }
-    return HT_HOLD_OK;
+    return (ht_alt_hold_first_bad(p) == HT_ALT_P_NONE) ? HT_HOLD_OK : HT_HOLD_ERR_PARAM;
 }
 
 void ht_alt_hold_reset(ht_alt_hold_state_t *s)
@@ -171,15 +151,7 @@ ht_hold_status_t ht_speed_hold_check(const ht_speed_hold_params_t *p)
     if (p == NULL) {
         return HT_HOLD_ERR_NULL;
     }
-    if (p->throttle_trim < 0 || p->throttle_trim > Q14_ONE || p->throttle_min < 0 ||
-        p->throttle_min > Q14_ONE || p->throttle_max < p->throttle_min ||
-        p->throttle_max > Q14_ONE || !gain_ok(p->kp_throttle_per_m_s) ||
-        !gain_ok(p->ki_throttle_per_m) || !gain_ok(p->kff_throttle_per_pitch) ||
-        p->max_integral_throttle < 0 || p->max_integral_throttle > Q14_ONE || p->rate_hz < 1u ||
-        p->rate_hz > HOLD_RATE_MAX_HZ) {
-        return HT_HOLD_ERR_PARAM;
-    }
-    return HT_HOLD_OK;
+    return (ht_speed_hold_first_bad(p) == HT_SPEED_P_NONE) ? HT_HOLD_OK : HT_HOLD_ERR_PARAM;
 }
 
 void ht_speed_hold_reset(ht_speed_hold_state_t *s)

@@ -63,6 +63,10 @@ void ht_modes_bad_name(const ht_modes_bad_t *bad, char *buf, unsigned size)
         sub = ht_nav_param_name((ht_nav_param_id_t)bad->sub);
     } else if (bad->field == HT_MODES_P_AOA) {
         sub = ht_aoa_param_name((ht_aoa_param_id_t)bad->sub);
+    } else if (bad->field == HT_MODES_P_ALT_HOLD) {
+        sub = ht_alt_hold_param_name((ht_alt_param_id_t)bad->sub);
+    } else if (bad->field == HT_MODES_P_SPEED_HOLD) {
+        sub = ht_speed_hold_param_name((ht_speed_param_id_t)bad->sub);
     } else {
         /* a field without sub-fields: the name alone */
     }
@@ -106,32 +110,8 @@ void ht_modes_params_default(ht_modes_params_t *p)
     d.fbw = fbw;
     d.nav = nav;
     d.aoa = aoa;
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.alt.kp_pitch_per_m = Q16_FROM_REAL(0.03);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.alt.ki_pitch_per_m_s = Q16_FROM_REAL(0.005);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.alt.kd_pitch_per_m_s = Q16_FROM_REAL(0.05);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.alt.max_pitch = Q16_FROM_REAL(0.3);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.alt.max_integral_pitch = Q16_FROM_REAL(0.2);
-    d.alt.max_error_cm = 5000;
-    d.alt.integral_band_cm = 1000;
-    d.alt.rate_hz = 40u;
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.speed.throttle_trim = Q14_FROM_REAL(0.5);
-    d.speed.throttle_min = 0;
-    d.speed.throttle_max = Q14_ONE;
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.speed.kp_throttle_per_m_s = Q16_FROM_REAL(0.1);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.speed.ki_throttle_per_m = Q16_FROM_REAL(0.02);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.speed.kff_throttle_per_pitch = Q16_FROM_REAL(0.5);
-    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: compile-time constant
-    d.speed.max_integral_throttle = Q14_FROM_REAL(0.3);
-    d.speed.rate_hz = 40u;
+    ht_alt_hold_params_default(&d.alt, d.rate_hz);
+    ht_speed_hold_params_default(&d.speed, d.rate_hz);
     *p = d;
 }
 
@@ -218,13 +198,25 @@ int ht_modes_init(ht_modes_t *m, const ht_modes_params_t *p, const ht_controller
             b.sub = (int)ab;
         }
     }
-    if (b.field == HT_MODES_P_NONE &&
-        (ht_alt_hold_check(&p->alt) != HT_HOLD_OK || p->alt.rate_hz != p->rate_hz)) {
-        b.field = HT_MODES_P_ALT_HOLD;
+    if (b.field == HT_MODES_P_NONE) {
+        ht_alt_param_id_t ab = ht_alt_hold_first_bad(&p->alt);
+        if (ab == HT_ALT_P_NONE && p->alt.rate_hz != p->rate_hz) {
+            ab = HT_ALT_P_RATE_HZ;
+        }
+        if (ab != HT_ALT_P_NONE) {
+            b.field = HT_MODES_P_ALT_HOLD;
+            b.sub = (int)ab;
+        }
     }
-    if (b.field == HT_MODES_P_NONE &&
-        (ht_speed_hold_check(&p->speed) != HT_HOLD_OK || p->speed.rate_hz != p->rate_hz)) {
-        b.field = HT_MODES_P_SPEED_HOLD;
+    if (b.field == HT_MODES_P_NONE) {
+        ht_speed_param_id_t sb = ht_speed_hold_first_bad(&p->speed);
+        if (sb == HT_SPEED_P_NONE && p->speed.rate_hz != p->rate_hz) {
+            sb = HT_SPEED_P_RATE_HZ;
+        }
+        if (sb != HT_SPEED_P_NONE) {
+            b.field = HT_MODES_P_SPEED_HOLD;
+            b.sub = (int)sb;
+        }
     }
     if (b.field != HT_MODES_P_NONE) {
         ht_modes_t z2 = {0};

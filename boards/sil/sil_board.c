@@ -227,139 +227,139 @@ static int table_value(double v, const ht_param_info_t *info, const char *prefix
     return 0;
 }
 
-#define SIL_SET_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                               \
-    case HT_P_##id:                                                                                \
+/* One setter per group of the table: the stored value of row id into its
+ * field (the value is already within the row's bounds, so it fits). */
+#define SIL_SET(prefix, id, field, fmt)                                                            \
+    case prefix##id:                                                                               \
         p->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
         break;
+#define SIL_SET_LAW(id, name, field, unit, fmt, lo, hi, def, desc) SIL_SET(HT_P_, id, field, fmt)
+#define SIL_SET_DCM(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    SIL_SET(HT_DCM_P_, id, field, fmt)
+#define SIL_SET_GUIDE(id, name, field, unit, fmt, lo, hi, def, desc)                               \
+    SIL_SET(HT_GUIDE_P_, id, field, fmt)
+#define SIL_SET_ALT(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    SIL_SET(HT_ALT_P_, id, field, fmt)
+#define SIL_SET_SPEED(id, name, field, unit, fmt, lo, hi, def, desc)                               \
+    SIL_SET(HT_SPEED_P_, id, field, fmt)
 
-/* The law's parameters (sil_config_t law[], the table's units and order). */
-static int law_params(const sil_config_t *cfg, ht_params_t *p, char *err, size_t err_len)
+static void set_law(void *dst, int id, int64_t raw)
 {
-    for (int i = 1; i < (int)HT_P_COUNT; ++i) {
-        const ht_param_id_t id = (ht_param_id_t)i;
-        int64_t raw = 0;
-        if (table_value(cfg->law[i - 1], ht_param_info(id), "", &raw, err, err_len) != 0) {
-            return 1;
-        }
-        switch (id) {
-            HT_PARAMS_LAW(SIL_SET_FIELD)
-        default:
-            break;
-        }
+    ht_params_t *p = dst;
+    switch ((ht_param_id_t)id) {
+        HT_PARAMS_LAW(SIL_SET_LAW)
+    default:
+        break;
     }
-    return 0;
 }
 
-#define SIL_SET_DCM_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                           \
-    case HT_DCM_P_##id:                                                                            \
-        d->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
-        break;
-
-/* The estimator (sil_config_t estimator[], the table's units and order). */
-static int dcm_params(const sil_config_t *cfg, ht_dcm_params_t *d, char *err, size_t err_len)
+static void set_dcm(void *dst, int id, int64_t raw)
 {
-    for (int i = 1; i < (int)HT_DCM_P_COUNT; ++i) {
-        const ht_dcm_param_id_t id = (ht_dcm_param_id_t)i;
-        int64_t raw = 0;
-        if (table_value(cfg->estimator[i - 1], ht_dcm_param_info(id), "estimator.", &raw, err,
-                        err_len) != 0) {
-            return 1;
-        }
-        switch (id) {
-            HT_PARAMS_DCM(SIL_SET_DCM_FIELD)
-        default:
-            break;
-        }
+    ht_dcm_params_t *p = dst;
+    switch ((ht_dcm_param_id_t)id) {
+        HT_PARAMS_DCM(SIL_SET_DCM)
+    default:
+        break;
     }
-    return 0;
 }
 
-#define SIL_SET_GUIDE_FIELD(id, name, field, unit, fmt, lo, hi, def, desc)                         \
-    case HT_GUIDE_P_##id:                                                                          \
-        g->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
-        break;
-
-/* The guidance (sil_config_t guidance[], the table's units and order). */
-static int guide_params(const sil_config_t *cfg, ht_guide_params_t *g, char *err, size_t err_len)
+static void set_guide(void *dst, int id, int64_t raw)
 {
-    for (int i = 1; i < (int)HT_GUIDE_P_COUNT; ++i) {
-        const ht_guide_param_id_t id = (ht_guide_param_id_t)i;
-        int64_t raw = 0;
-        if (table_value(cfg->guidance[i - 1], ht_guide_param_info(id), "guidance.", &raw, err,
-                        err_len) != 0) {
-            return 1;
-        }
-        switch (id) {
-            HT_PARAMS_GUIDE(SIL_SET_GUIDE_FIELD)
-        default:
-            break;
-        }
+    ht_guide_params_t *p = dst;
+    switch ((ht_guide_param_id_t)id) {
+        HT_PARAMS_GUIDE(SIL_SET_GUIDE)
+    default:
+        break;
     }
-    return 0;
+}
+
+static void set_alt(void *dst, int id, int64_t raw)
+{
+    ht_alt_hold_params_t *p = dst;
+    switch ((ht_alt_param_id_t)id) {
+        HT_PARAMS_ALT(SIL_SET_ALT)
+    default:
+        break;
+    }
+}
+
+static void set_speed(void *dst, int id, int64_t raw)
+{
+    ht_speed_hold_params_t *p = dst;
+    switch ((ht_speed_param_id_t)id) {
+        HT_PARAMS_SPEED(SIL_SET_SPEED)
+    default:
+        break;
+    }
 }
 
 const ht_param_info_t *sil_param_info(int group, int index)
 {
     const int id = index + 1;
-    if (group == 0) {
+    switch (group) {
+    case SIL_GROUP_LAW:
         return ht_param_info((ht_param_id_t)id);
-    }
-    if (group == 1) {
+    case SIL_GROUP_ESTIMATOR:
         return ht_dcm_param_info((ht_dcm_param_id_t)id);
-    }
-    if (group == 2) {
+    case SIL_GROUP_GUIDANCE:
         return ht_guide_param_info((ht_guide_param_id_t)id);
+    case SIL_GROUP_ALT_HOLD:
+        return ht_alt_hold_param_info((ht_alt_param_id_t)id);
+    case SIL_GROUP_SPEED_HOLD:
+        return ht_speed_hold_param_info((ht_speed_param_id_t)id);
+    default:
+        return NULL;
     }
-    return NULL;
 }
 
 int sil_param_count(int group)
 {
-    static const int counts[3] = {HT_PARAM_LAW_COUNT, HT_PARAM_DCM_COUNT, HT_PARAM_GUIDE_COUNT};
-    return (group >= 0 && group < 3) ? counts[group] : 0;
+    static const int counts[SIL_GROUP_COUNT] = {HT_PARAM_LAW_COUNT, HT_PARAM_DCM_COUNT,
+                                                HT_PARAM_GUIDE_COUNT, HT_PARAM_ALT_COUNT,
+                                                HT_PARAM_SPEED_COUNT};
+    return (group >= 0 && group < SIL_GROUP_COUNT) ? counts[group] : 0;
 }
 
-/* The holds (holds.h), checked here so that a refusal names the hold. */
+/* One group of sil_config_t (values in the table's units and order) into
+ * its struct: each value checked against its row, a refusal quoting the
+ * row's bounds under the group's prefix ("estimator.gps_latency = ..."). */
+static int group_params(int group, const double *values, const char *prefix, void *dst,
+                        void (*set)(void *, int, int64_t), char *err, size_t err_len)
+{
+    for (int i = 0; i < sil_param_count(group); ++i) {
+        int64_t raw = 0;
+        if (table_value(values[i], sil_param_info(group, i), prefix, &raw, err, err_len) != 0) {
+            return 1;
+        }
+        set(dst, i + 1, raw);
+    }
+    return 0;
+}
+
+/* The holds, and the altitude hold's initial integrators (harness state, not
+ * parameters: a run that starts in trimmed flight). The joint limits are
+ * ht_modes_init's (fw_init refuses them, naming the field). */
 static int hold_params(const sil_config_t *cfg, fw_config_t *fc, char *err, size_t err_len)
 {
-    ht_alt_hold_params_t *alt = &fc->modes.alt;
-    alt->kp_pitch_per_m = to_q16(cfg->alt_kp_pitch_per_m);
-    alt->ki_pitch_per_m_s = to_q16(cfg->alt_ki_pitch_per_m_s);
-    alt->kd_pitch_per_m_s = to_q16(cfg->alt_kd_pitch_per_m_s);
-    alt->max_pitch = to_q16(cfg->alt_max_pitch);
-    alt->max_integral_pitch = to_q16(cfg->alt_max_integral_pitch);
-    alt->max_error_cm = to_cm32(cfg->alt_max_error_m);
-    alt->integral_band_cm = to_cm32(cfg->alt_integral_band_m);
-    alt->rate_hz = (uint16_t)cfg->control_rate_hz;
-    if (!in_range(cfg->alt_protect_m_s, 0.0, 327.0) ||
-        !in_range(cfg->alt_protect_valid_m_s, 0.0, 327.0) ||
-        !in_range(cfg->alt_protect_tau_s, 0.0, 60.0)) {
-        return fail(err, err_len, "altitude_hold");
+    const uint16_t rate = (uint16_t)cfg->control_rate_hz;
+    ht_alt_hold_params_default(&fc->modes.alt, rate);
+    ht_speed_hold_params_default(&fc->modes.speed, rate);
+    if (group_params(SIL_GROUP_ALT_HOLD, cfg->alt_hold, "", &fc->modes.alt, set_alt, err,
+                     err_len) != 0 ||
+        group_params(SIL_GROUP_SPEED_HOLD, cfg->speed_hold, "", &fc->modes.speed, set_speed, err,
+                     err_len) != 0) {
+        return 1;
     }
-    alt->protect_cm_s = to_cm32(cfg->alt_protect_m_s);
-    alt->protect_valid_cm_s = to_cm32(cfg->alt_protect_valid_m_s);
-    alt->kv_pitch_per_m_s = to_q16(cfg->alt_kv_pitch_per_m_s);
-    alt->protect_tau_ms = (uint16_t)llround(cfg->alt_protect_tau_s * 1000.0);
-    if (ht_alt_hold_check(alt) != HT_HOLD_OK) {
-        return fail(err, err_len, "altitude_hold");
+    if (!in_range(cfg->alt_integral_upright, -4.0, 4.0)) {
+        return fail(err, err_len, "alt_integral_upright");
+    }
+    if (!in_range(cfg->alt_integral_inverted, -4.0, 4.0)) {
+        return fail(err, err_len, "alt_integral_inverted");
     }
     fc->alt_integral_q20[0] =
         (int32_t)to_fixed(cfg->alt_integral_upright, 1048576.0, INT32_MIN, INT32_MAX);
     fc->alt_integral_q20[1] =
         (int32_t)to_fixed(cfg->alt_integral_inverted, 1048576.0, INT32_MIN, INT32_MAX);
-
-    ht_speed_hold_params_t *spd = &fc->modes.speed;
-    spd->throttle_trim = to_q14(cfg->spd_throttle_trim);
-    spd->throttle_min = to_q14(cfg->spd_throttle_min);
-    spd->throttle_max = to_q14(cfg->spd_throttle_max);
-    spd->kp_throttle_per_m_s = to_q16(cfg->spd_kp_throttle_per_m_s);
-    spd->ki_throttle_per_m = to_q16(cfg->spd_ki_throttle_per_m);
-    spd->kff_throttle_per_pitch = to_q16(cfg->spd_kff_throttle_per_pitch);
-    spd->max_integral_throttle = to_q14(cfg->spd_max_integral_throttle);
-    spd->rate_hz = (uint16_t)cfg->control_rate_hz;
-    if (ht_speed_hold_check(spd) != HT_HOLD_OK) {
-        return fail(err, err_len, "airspeed_hold");
-    }
     return 0;
 }
 
@@ -420,16 +420,18 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
         imu_rate_hz / cfg->control_rate_hz > SIL_IMU_MAX) {
         return fail(err, err_len, "imu_rate_hz");
     }
-    int rc = law_params(cfg, &fc->law, err, err_len);
+    int rc = group_params(SIL_GROUP_LAW, cfg->law, "", &fc->law, set_law, err, err_len);
     if (rc == 0) {
         fc->modes.rate_hz = (uint16_t)cfg->control_rate_hz;
         rc = hold_params(cfg, fc, err, err_len);
     }
     if (rc == 0) {
-        rc = dcm_params(cfg, &fc->dcm, err, err_len);
+        rc = group_params(SIL_GROUP_ESTIMATOR, cfg->estimator, "estimator.", &fc->dcm, set_dcm, err,
+                          err_len);
     }
     if (rc == 0) {
-        rc = guide_params(cfg, &fc->guide, err, err_len);
+        rc = group_params(SIL_GROUP_GUIDANCE, cfg->guidance, "guidance.", &fc->guide, set_guide,
+                          err, err_len);
     }
     if (rc == 0 && cfg->modes_enabled != 0) {
         rc = modes_params(b, cfg, &fc->modes, err, err_len);

@@ -31,9 +31,10 @@ extern "C" {
 #endif
 
 #define SIL_BOARD_ABI_VERSION                                                                      \
-    12 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+    13 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
           10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table;               \
-          12: guidance[] (the turn-rate trim) */
+          12: guidance[] (the turn-rate trim);                                                     \
+          13: alt_hold[] and speed_hold[] from the parameter table */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -56,15 +57,13 @@ typedef struct {
     /* ABI 12: the guidance between the modes and the law (guide.h), the
      * same way */
     double guidance[HT_PARAM_GUIDE_COUNT];
-    /* altitude hold (holds.h) */
-    double alt_kp_pitch_per_m, alt_ki_pitch_per_m_s, alt_kd_pitch_per_m_s;
-    double alt_max_pitch, alt_max_integral_pitch, alt_max_error_m, alt_integral_band_m;
-    /* initial integrator values (pitch ratio), upright and inverted */
+    /* ABI 13: the altitude and airspeed holds (holds.h), the same way; their
+     * step rate is control_rate_hz */
+    double alt_hold[HT_PARAM_ALT_COUNT];
+    double speed_hold[HT_PARAM_SPEED_COUNT];
+    /* the altitude hold's initial integrators (pitch ratio, [-4, 4]), upright
+     * and inverted: harness state, not parameters */
     double alt_integral_upright, alt_integral_inverted;
-    /* airspeed hold */
-    double spd_throttle_trim, spd_throttle_min, spd_throttle_max;
-    double spd_kp_throttle_per_m_s, spd_ki_throttle_per_m, spd_kff_throttle_per_pitch;
-    double spd_max_integral_throttle;
     /* output stage: servo trims, as a fraction of travel, [-1, 1] (rounded to 1 us) */
     double trim_aileron, trim_elevator, trim_rudder;
     int32_t control_rate_hz;
@@ -90,8 +89,6 @@ typedef struct {
      * as altitude_m); rounded to whole metres */
     int32_t waypoint_count;
     double waypoints[SIL_MAX_WAYPOINTS][3];
-    /* ABI 7: the altitude hold's airspeed protection (holds.h; protect 0 = off) */
-    double alt_protect_m_s, alt_protect_valid_m_s, alt_kv_pitch_per_m_s, alt_protect_tau_s;
 } sil_config_t;
 
 /* One control step's measurements (library axes: X left, Y forward, Z down).
@@ -203,10 +200,19 @@ size_t sil_sensors_size(void);
 size_t sil_command_size(void);
 size_t sil_actuators_size(void);
 
+/* The groups of the parameter table, in sil_config_t's arrays. */
+enum {
+    SIL_GROUP_LAW = 0,
+    SIL_GROUP_ESTIMATOR = 1,
+    SIL_GROUP_GUIDANCE = 2,
+    SIL_GROUP_ALT_HOLD = 3,
+    SIL_GROUP_SPEED_HOLD = 4,
+    SIL_GROUP_COUNT = 5
+};
+
 /* The parameter table's rows, for the harness's cross-check
- * (sil/tests/test_params.py): group 0 the law, 1 the estimator, 2 the
- * guidance; index from 0
- * in the table's order. NULL / 0 for anything else. */
+ * (sil/tests/test_params.py): a SIL_GROUP_*, index from 0 in the table's
+ * order. NULL / 0 for anything else. */
 const ht_param_info_t *sil_param_info(int group, int index);
 int sil_param_count(int group);
 

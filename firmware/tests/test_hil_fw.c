@@ -125,28 +125,36 @@ static sil_config_t config(void)
     c.law[HT_P_V_MIN - 1] = 30.0;
     c.law[HT_P_MAX_TILT - 1] = 2.0;
     c.law[HT_P_SCHEDULE - 1] = 1.0;
-    c.alt_kp_pitch_per_m = 0.012;
-    c.alt_ki_pitch_per_m_s = 0.004;
-    c.alt_kd_pitch_per_m_s = 0.015;
-    c.alt_max_pitch = 0.3;
-    c.alt_max_integral_pitch = 0.2;
-    c.alt_max_error_m = 100.0;
-    c.alt_integral_band_m = 20.0;
+    for (int i = 1; i < (int)HT_ALT_P_COUNT; ++i) {
+        const ht_param_info_t *info = ht_alt_hold_param_info((ht_alt_param_id_t)i);
+        c.alt_hold[i - 1] = (double)info->default_raw / (double)info->scale;
+    }
+    for (int i = 1; i < (int)HT_SPEED_P_COUNT; ++i) {
+        const ht_param_info_t *info = ht_speed_hold_param_info((ht_speed_param_id_t)i);
+        c.speed_hold[i - 1] = (double)info->default_raw / (double)info->scale;
+    }
+    c.alt_hold[HT_ALT_P_KP - 1] = 0.012;
+    c.alt_hold[HT_ALT_P_KI - 1] = 0.004;
+    c.alt_hold[HT_ALT_P_KD - 1] = 0.015;
+    c.alt_hold[HT_ALT_P_MAX_PITCH - 1] = 0.3;
+    c.alt_hold[HT_ALT_P_MAX_INTEGRAL - 1] = 0.2;
+    c.alt_hold[HT_ALT_P_MAX_ERROR - 1] = 100.0;
+    c.alt_hold[HT_ALT_P_INTEGRAL_BAND - 1] = 20.0;
     c.alt_integral_upright = 0.01;
     c.alt_integral_inverted = -0.5; /* beyond max_integral: both boards clamp it */
     /* the airspeed protection on (protocol 2), near the T-37's cruise so the
      * steps below reach it */
-    c.alt_protect_m_s = 100.0;
-    c.alt_protect_valid_m_s = 30.0;
-    c.alt_kv_pitch_per_m_s = 0.03;
-    c.alt_protect_tau_s = 1.0;
-    c.spd_throttle_trim = 0.55;
-    c.spd_throttle_min = 0.05;
-    c.spd_throttle_max = 1.0;
-    c.spd_kp_throttle_per_m_s = 0.05;
-    c.spd_ki_throttle_per_m = 0.01;
-    c.spd_kff_throttle_per_pitch = 1.0;
-    c.spd_max_integral_throttle = 0.3;
+    c.alt_hold[HT_ALT_P_PROTECT - 1] = 100.0;
+    c.alt_hold[HT_ALT_P_PROTECT_VALID - 1] = 30.0;
+    c.alt_hold[HT_ALT_P_KV - 1] = 0.03;
+    c.alt_hold[HT_ALT_P_PROTECT_TAU - 1] = 1.0;
+    c.speed_hold[HT_SPEED_P_THROTTLE_TRIM - 1] = 0.55;
+    c.speed_hold[HT_SPEED_P_THROTTLE_MIN - 1] = 0.05;
+    c.speed_hold[HT_SPEED_P_THROTTLE_MAX - 1] = 1.0;
+    c.speed_hold[HT_SPEED_P_KP - 1] = 0.05;
+    c.speed_hold[HT_SPEED_P_KI - 1] = 0.01;
+    c.speed_hold[HT_SPEED_P_KFF - 1] = 1.0;
+    c.speed_hold[HT_SPEED_P_MAX_INTEGRAL - 1] = 0.3;
     c.trim_aileron = 0.013;
     c.trim_elevator = -0.021;
     c.trim_rudder = 0.004;
@@ -192,30 +200,36 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
     TEST_ASSERT_EQUAL_UINT8(50u, HIL_LEN_CFG_LAW);
     push_frame(HIL_ID_CFG_LAW, p, HIL_LEN_CFG_LAW);
 
-    put32(&p[0], q16(c->alt_kp_pitch_per_m));
-    put32(&p[4], q16(c->alt_ki_pitch_per_m_s));
-    put32(&p[8], q16(c->alt_kd_pitch_per_m_s));
-    put32(&p[12], q16(c->alt_max_pitch));
-    put32(&p[16], q16(c->alt_max_integral_pitch));
-    put32(&p[20], (int32_t)llround(c->alt_max_error_m * 100.0));
-    put32(&p[24], (int32_t)llround(c->alt_integral_band_m * 100.0));
-    hil_put_u16(&p[28], (uint16_t)c->control_rate_hz);
-    put32(&p[30], (int32_t)llround(c->alt_integral_upright * 1048576.0));
-    put32(&p[34], (int32_t)llround(c->alt_integral_inverted * 1048576.0));
-    put32(&p[38], (int32_t)llround(c->alt_protect_m_s * 100.0));
-    put32(&p[42], (int32_t)llround(c->alt_protect_valid_m_s * 100.0));
-    put32(&p[46], q16(c->alt_kv_pitch_per_m_s));
-    hil_put_u16(&p[50], (uint16_t)llround(c->alt_protect_tau_s * 1000.0));
+    /* protocol 7: the altitude hold's rows (docs/hil-protocol.md): five i32
+     * Q16 (0..16), i32 cm max_error (20), band (24), i32 cm/s protect (28),
+     * valid (32), i32 Q16 kv (36), u16 ms tau (40); then u16 rate_hz (42),
+     * i32 Q20 integrators upright (44) and inverted (48) */
+    const double *a = c->alt_hold;
+    for (int i = 0; i < 5; ++i) {
+        put32(&p[4 * i], q16(a[i]));
+    }
+    put32(&p[20], (int32_t)llround(a[HT_ALT_P_MAX_ERROR - 1] * 100.0));
+    put32(&p[24], (int32_t)llround(a[HT_ALT_P_INTEGRAL_BAND - 1] * 100.0));
+    put32(&p[28], (int32_t)llround(a[HT_ALT_P_PROTECT - 1] * 100.0));
+    put32(&p[32], (int32_t)llround(a[HT_ALT_P_PROTECT_VALID - 1] * 100.0));
+    put32(&p[36], q16(a[HT_ALT_P_KV - 1]));
+    hil_put_u16(&p[40], (uint16_t)llround(a[HT_ALT_P_PROTECT_TAU - 1] * 1000.0));
+    hil_put_u16(&p[42], (uint16_t)c->control_rate_hz);
+    put32(&p[44], (int32_t)llround(c->alt_integral_upright * 1048576.0));
+    put32(&p[48], (int32_t)llround(c->alt_integral_inverted * 1048576.0));
+    TEST_ASSERT_EQUAL_UINT8(52u, HIL_LEN_CFG_ALT);
     push_frame(HIL_ID_CFG_ALT, p, HIL_LEN_CFG_ALT);
 
-    hil_put_i16(&p[0], (int16_t)llround(c->spd_throttle_trim * 16384.0));
-    hil_put_i16(&p[2], (int16_t)llround(c->spd_throttle_min * 16384.0));
-    hil_put_i16(&p[4], (int16_t)llround(c->spd_throttle_max * 16384.0));
-    put32(&p[6], q16(c->spd_kp_throttle_per_m_s));
-    put32(&p[10], q16(c->spd_ki_throttle_per_m));
-    put32(&p[14], q16(c->spd_kff_throttle_per_pitch));
-    hil_put_i16(&p[18], (int16_t)llround(c->spd_max_integral_throttle * 16384.0));
+    /* the airspeed hold's rows: three i16 Q14 throttles (0..4), three i32 Q16
+     * gains (6..14), i16 Q14 max_integral (18); then u16 rate_hz (20) */
+    const double *v = c->speed_hold;
+    for (int i = 0; i < 3; ++i) {
+        hil_put_i16(&p[2 * i], (int16_t)llround(v[i] * 16384.0));
+        put32(&p[6 + 4 * i], q16(v[3 + i]));
+    }
+    hil_put_i16(&p[18], (int16_t)llround(v[HT_SPEED_P_MAX_INTEGRAL - 1] * 16384.0));
     hil_put_u16(&p[20], (uint16_t)c->control_rate_hz);
+    TEST_ASSERT_EQUAL_UINT8(22u, HIL_LEN_CFG_SPD);
     push_frame(HIL_ID_CFG_SPD, p, HIL_LEN_CFG_SPD);
 
     /* the SIL board's channels, from its own (checked) output stage */
@@ -843,7 +857,7 @@ static void test_start_checks_the_configuration(void)
     TEST_ASSERT_EQUAL_UINT8(0u, fw.started);
 }
 
-/* CFG_LAW and CFG_EST follow the parameter table (protocol 6,
+/* CFG_LAW, CFG_EST, CFG_ALT and CFG_SPD follow the parameter table (protocol 7,
  * docs/hil-protocol.md): each field at its documented offset and width, and
  * the parser gives back every field the writer wrote (a row missing from
  * either, or a width that disagrees, fails here). */
@@ -930,6 +944,62 @@ static void test_cfg_frames_follow_the_table(void)
     TEST_ASSERT_EQUAL_UINT16(c.control_divider, cb.control_divider);
     TEST_ASSERT_EQUAL_UINT16(c.imu_timeout_samples, cb.imu_timeout_samples);
     TEST_ASSERT_EQUAL_MEMORY(&c.guide, &cb.guide, sizeof c.guide);
+
+    /* protocol 7: the holds */
+    memset(&c, 0, sizeof c);
+    ht_alt_hold_params_t *a = &c.modes.alt;
+    a->kp_pitch_per_m = 0x31313131;
+    a->ki_pitch_per_m_s = 0x32323232;
+    a->kd_pitch_per_m_s = 0x33333333;
+    a->max_pitch = 0x34343434;
+    a->max_integral_pitch = 0x35353535;
+    a->max_error_cm = 0x36363636;
+    a->integral_band_cm = 0x37373737;
+    a->protect_cm_s = 0x38383838;
+    a->protect_valid_cm_s = 0x39393939;
+    a->kv_pitch_per_m_s = 0x3A3A3A3A;
+    a->protect_tau_ms = 0xC3C4u;
+    a->rate_hz = 0xC5C6u;
+    c.alt_integral_q20[0] = -0x12345678;
+    c.alt_integral_q20[1] = 0x2345678;
+    memset(p, 0xEE, sizeof p);
+    hil_cfg_alt_write(p, &c);
+    for (int i = 0; i < 10; ++i) {
+        TEST_ASSERT_EQUAL_INT32(0x31313131 + 0x01010101 * i, hil_get_i32(&p[4 * i]));
+    }
+    TEST_ASSERT_EQUAL_HEX16(0xC3C4u, hil_get_u16(&p[40]));
+    TEST_ASSERT_EQUAL_HEX16(0xC5C6u, hil_get_u16(&p[42]));
+    TEST_ASSERT_EQUAL_INT32(-0x12345678, hil_get_i32(&p[44]));
+    TEST_ASSERT_EQUAL_INT32(0x2345678, hil_get_i32(&p[48]));
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[52]);
+    ht_speed_hold_params_t *sp = &c.modes.speed;
+    sp->throttle_trim = 0x4142;
+    sp->throttle_min = -0x4344;
+    sp->throttle_max = 0x4546;
+    sp->kp_throttle_per_m_s = 0x51515151;
+    sp->ki_throttle_per_m = 0x52525252;
+    sp->kff_throttle_per_pitch = 0x53535353;
+    sp->max_integral_throttle = 0x4748;
+    sp->rate_hz = 0xD1D2u;
+    uint8_t q[HIL_PAYLOAD_MAX];
+    memset(q, 0xEE, sizeof q);
+    hil_cfg_spd_write(q, &c);
+    TEST_ASSERT_EQUAL_INT16(0x4142, hil_get_i16(&q[0]));
+    TEST_ASSERT_EQUAL_INT16(-0x4344, hil_get_i16(&q[2]));
+    TEST_ASSERT_EQUAL_INT16(0x4546, hil_get_i16(&q[4]));
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_INT32(0x51515151 + 0x01010101 * i, hil_get_i32(&q[6 + 4 * i]));
+    }
+    TEST_ASSERT_EQUAL_INT16(0x4748, hil_get_i16(&q[18]));
+    TEST_ASSERT_EQUAL_HEX16(0xD1D2u, hil_get_u16(&q[20]));
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, q[22]);
+    memset(&cb, 0, sizeof cb);
+    hil_cfg_alt_parse(p, &cb);
+    hil_cfg_spd_parse(q, &cb);
+    TEST_ASSERT_EQUAL_MEMORY(&c.modes.alt, &cb.modes.alt, sizeof c.modes.alt);
+    TEST_ASSERT_EQUAL_MEMORY(&c.modes.speed, &cb.modes.speed, sizeof c.modes.speed);
+    TEST_ASSERT_EQUAL_INT32(c.alt_integral_q20[0], cb.alt_integral_q20[0]);
+    TEST_ASSERT_EQUAL_INT32(c.alt_integral_q20[1], cb.alt_integral_q20[1]);
 }
 
 int main(void)

@@ -35,6 +35,7 @@
 
 #include <stdint.h>
 
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
@@ -60,31 +61,48 @@ typedef enum {
  *            direction in which the output is saturated
  *   climb  = measured vertical speed (m/s, + = up)
  */
+/* The parameters: the rows of params.def HT_PARAMS_ALT (names, units,
+ * ranges, defaults), then the step rate.
+ *
+ * Airspeed protection (ht_alt_hold_step_v; protect_cm_s = 0: off). Below
+ * protect_cm_s the climb demand is cut: the pitch ratio is limited to
+ *   ceiling = max_pitch - kv * (protect - airspeed), at least -max_pitch,
+ * so when the aircraft cannot hold its altitude at the pitch asked for (a
+ * downdraft beyond its climb, full throttle) it gives up altitude for
+ * airspeed instead of slowing into the stall. An airspeed below
+ * protect_valid_cm_s is taken as a failed sensor (a dead pitot reads 0), not
+ * a stall: no protection then, and the reading is not filtered. The airspeed
+ * the ceiling uses is low-pass filtered (first order, time constant
+ * protect_tau_ms; 0 = none) so that the short airspeed dips of horizontal
+ * gusts and one-sample spikes do not pitch the nose down. */
 typedef struct {
-    q16_t kp_pitch_per_m;     /* pitch ratio per metre of altitude error, [0, 64] */
-    q16_t ki_pitch_per_m_s;   /* pitch ratio per metre-second of error, [0, 64] */
-    q16_t kd_pitch_per_m_s;   /* pitch ratio per m/s of vertical speed, [0, 64] */
-    q16_t max_pitch;          /* limit on |pitch ratio|, (0, 4] */
-    q16_t max_integral_pitch; /* limit on |integral|, [0, 4] */
-    int32_t max_error_cm;     /* limit on |altitude error|, [100, 1000000] cm */
-    int32_t integral_band_cm; /* integrate only while |error| <= this, [0, max_error_cm] */
-    uint16_t rate_hz;         /* step rate, [1, 1000] */
-    /* Airspeed protection (ht_alt_hold_step_v; protect_cm_s = 0: off). Below
-     * protect_cm_s the climb demand is cut: the pitch ratio is limited to
-     *   ceiling = max_pitch - kv * (protect - airspeed), at least -max_pitch,
-     * so when the aircraft cannot hold its altitude at the pitch asked for
-     * (a downdraft beyond its climb, full throttle) it gives up altitude for
-     * airspeed instead of slowing into the stall. An airspeed below
-     * protect_valid_cm_s is taken as a failed sensor (a dead pitot reads 0),
-     * not a stall: no protection then, and the reading is not filtered. The
-     * airspeed the ceiling uses is low-pass filtered (first order, time
-     * constant protect_tau_ms; 0 = none) so that the short airspeed dips of
-     * horizontal gusts and one-sample spikes do not pitch the nose down. */
-    int32_t protect_cm_s;       /* [0, 32767] cm/s, 0 = off */
-    int32_t protect_valid_cm_s; /* [0, protect_cm_s] cm/s */
-    q16_t kv_pitch_per_m_s;     /* ceiling drop per m/s below protect_cm_s, [0, 64] */
-    uint16_t protect_tau_ms;    /* [0, 60000] ms */
+    HT_PARAMS_ALT(HT_PARAM_X_FIELD)
+    uint16_t rate_hz; /* step rate, [1, 1000]: the control rate */
 } ht_alt_hold_params_t;
+
+/* HT_ALT_P_<ID> of each row, in table order; HT_ALT_P_RATE_HZ is rate_hz,
+ * which is not a row. */
+#define HT_PARAM_X_ALT_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_ALT_P_##id,
+typedef enum {
+    HT_ALT_P_NONE = 0,
+    HT_PARAMS_ALT(HT_PARAM_X_ALT_ID) HT_ALT_P_COUNT,
+    HT_ALT_P_RATE_HZ = HT_ALT_P_COUNT
+} ht_alt_param_id_t;
+
+/* The table's defaults, at the step rate rate_hz. */
+void ht_alt_hold_params_default(ht_alt_hold_params_t *p, uint16_t rate_hz);
+
+/* "alt_kp", ..., "rate_hz" (HT_ALT_P_RATE_HZ), or "" for anything else. */
+const char *ht_alt_hold_param_name(ht_alt_param_id_t id);
+
+/* The table's row of a parameter, or NULL (also for HT_ALT_P_RATE_HZ). */
+const ht_param_info_t *ht_alt_hold_param_info(ht_alt_param_id_t id);
+
+/* The first parameter out of range: each row's own bounds in table order,
+ * then the joint limits (integral_band <= max_error names
+ * HT_ALT_P_INTEGRAL_BAND, protect_valid <= protect HT_ALT_P_PROTECT_VALID),
+ * then rate_hz. HT_ALT_P_NONE when all are in range. p must not be NULL. */
+ht_alt_param_id_t ht_alt_hold_first_bad(const ht_alt_hold_params_t *p);
 
 /* The caller's state: one integrator per orientation, Q20 pitch ratio. */
 typedef struct {
@@ -93,7 +111,8 @@ typedef struct {
     uint8_t airspeed_valid;  /* airspeed_q8 holds a reading (0 after reset) */
 } ht_alt_hold_state_t;
 
-/* Check the parameters; HT_HOLD_OK when every field is in range. */
+/* Check the parameters; HT_HOLD_OK when every field is in range
+ * (ht_alt_hold_first_bad names the first that is not). */
 ht_hold_status_t ht_alt_hold_check(const ht_alt_hold_params_t *p);
 
 /* Zero both integrators and forget the filtered airspeed. */
@@ -129,15 +148,26 @@ q16_t ht_alt_hold_step_v(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s, 
  *   pitch_cmd = the pitch ratio commanded this step (climbing needs power)
  */
 typedef struct {
-    q14_t throttle_trim;          /* throttle at the target in level flight, [0, 1] */
-    q14_t throttle_min;           /* [0, 1] */
-    q14_t throttle_max;           /* [min, 1] */
-    q16_t kp_throttle_per_m_s;    /* throttle per m/s of airspeed error, [0, 64] */
-    q16_t ki_throttle_per_m;      /* throttle per (m/s * s) of error, [0, 64] */
-    q16_t kff_throttle_per_pitch; /* throttle per unit of commanded pitch ratio, [0, 64] */
-    q14_t max_integral_throttle;  /* limit on |integral|, [0, 1] */
-    uint16_t rate_hz;             /* step rate, [1, 1000] */
+    HT_PARAMS_SPEED(HT_PARAM_X_FIELD)
+    uint16_t rate_hz; /* step rate, [1, 1000]: the control rate */
 } ht_speed_hold_params_t;
+
+/* HT_SPEED_P_<ID> of each row, in table order; HT_SPEED_P_RATE_HZ is
+ * rate_hz, which is not a row. */
+#define HT_PARAM_X_SPEED_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_SPEED_P_##id,
+typedef enum {
+    HT_SPEED_P_NONE = 0,
+    HT_PARAMS_SPEED(HT_PARAM_X_SPEED_ID) HT_SPEED_P_COUNT,
+    HT_SPEED_P_RATE_HZ = HT_SPEED_P_COUNT
+} ht_speed_param_id_t;
+
+void ht_speed_hold_params_default(ht_speed_hold_params_t *p, uint16_t rate_hz);
+const char *ht_speed_hold_param_name(ht_speed_param_id_t id);
+const ht_param_info_t *ht_speed_hold_param_info(ht_speed_param_id_t id);
+
+/* As ht_alt_hold_first_bad; the joint limit throttle_min <= throttle_max
+ * names HT_SPEED_P_THROTTLE_MAX. */
+ht_speed_param_id_t ht_speed_hold_first_bad(const ht_speed_hold_params_t *p);
 
 /* The caller's state: Q20 throttle. */
 typedef struct {

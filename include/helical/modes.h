@@ -130,15 +130,16 @@ typedef enum {
     HT_MODES_P_FBW,        /* see bad->sub (ht_fbw_param_id_t) */
     HT_MODES_P_NAV,        /* see bad->sub (ht_nav_param_id_t), bad->waypoint */
     HT_MODES_P_AOA,        /* see bad->sub (ht_aoa_param_id_t) */
-    HT_MODES_P_ALT_HOLD,   /* ht_alt_hold_check refused alt (or its rate_hz != rate_hz) */
-    HT_MODES_P_SPEED_HOLD, /* ht_speed_hold_check refused speed (or its rate_hz) */
+    HT_MODES_P_ALT_HOLD,   /* see bad->sub (ht_alt_param_id_t; RATE_HZ: != rate_hz) */
+    HT_MODES_P_SPEED_HOLD, /* see bad->sub (ht_speed_param_id_t; RATE_HZ: != rate_hz) */
     HT_MODES_P_COUNT
 } ht_modes_param_id_t;
 
 /* Which field init refused: field, and for the sub-modules their field. */
 typedef struct {
     ht_modes_param_id_t field;
-    int sub;           /* ht_fbw/nav/aoa_param_id_t when field is FBW / NAV / AOA */
+    int sub;           /* ht_fbw/nav/aoa/alt/speed_param_id_t when field is FBW / NAV / AOA /
+                          ALT_HOLD / SPEED_HOLD */
     uint16_t waypoint; /* the bad waypoint's index for HT_NAV_P_WAYPOINT */
 } ht_modes_bad_t;
 

@@ -23,30 +23,40 @@
 #define HT_PFMT_TYPE_CM16 int16_t
 #define HT_PFMT_TYPE_U8   uint8_t
 #define HT_PFMT_TYPE_U16  uint16_t
+#define HT_PFMT_TYPE_Q14  q14_t
+#define HT_PFMT_TYPE_MS16 uint16_t
 
 #define HT_PFMT_SCALE_Q16  65536.0
 #define HT_PFMT_SCALE_CM32 100.0
 #define HT_PFMT_SCALE_CM16 100.0
 #define HT_PFMT_SCALE_U8   1.0
 #define HT_PFMT_SCALE_U16  1.0
+#define HT_PFMT_SCALE_Q14  16384.0
+#define HT_PFMT_SCALE_MS16 1000.0
 
 #define HT_PFMT_ISCALE_Q16  65536
 #define HT_PFMT_ISCALE_CM32 100
 #define HT_PFMT_ISCALE_CM16 100
 #define HT_PFMT_ISCALE_U8   1
 #define HT_PFMT_ISCALE_U16  1
+#define HT_PFMT_ISCALE_Q14  16384
+#define HT_PFMT_ISCALE_MS16 1000
 
 #define HT_PFMT_BYTES_Q16  4u
 #define HT_PFMT_BYTES_CM32 4u
 #define HT_PFMT_BYTES_CM16 2u
 #define HT_PFMT_BYTES_U8   1u
 #define HT_PFMT_BYTES_U16  2u
+#define HT_PFMT_BYTES_Q14  2u
+#define HT_PFMT_BYTES_MS16 2u
 
 #define HT_PFMT_NAME_Q16  "Q16"
 #define HT_PFMT_NAME_CM32 "int32 x100"
 #define HT_PFMT_NAME_CM16 "int16 x100"
 #define HT_PFMT_NAME_U8   "uint8"
 #define HT_PFMT_NAME_U16  "uint16"
+#define HT_PFMT_NAME_Q14  "Q14"
+#define HT_PFMT_NAME_MS16 "uint16 x1000"
 
 /* An engineering value as the field stores it, rounded half away from zero
  * (as Q16_FROM_REAL). Only for the table's constants. One macro per format,
@@ -59,6 +69,8 @@
 #define HT_PARAM_RAW_CM16(v)          HT_PARAM_RAW_(int16_t, 100.0, v)
 #define HT_PARAM_RAW_U8(v)            HT_PARAM_RAW_(uint8_t, 1.0, v)
 #define HT_PARAM_RAW_U16(v)           HT_PARAM_RAW_(uint16_t, 1.0, v)
+#define HT_PARAM_RAW_Q14(v)           HT_PARAM_RAW_(q14_t, 16384.0, v)
+#define HT_PARAM_RAW_MS16(v)          HT_PARAM_RAW_(uint16_t, 1000.0, v)
 
 /* --- row expanders (X of HT_PARAMS_LAW / HT_PARAMS_DCM) ------------------- */
 
@@ -75,6 +87,19 @@
 /* the bytes a row takes on the HIL link */
 #define HT_PARAM_X_BYTES(id, name, field, unit, fmt, lo, hi, def, desc)                            \
     +HT_PFMT_BYTES_##fmt /* NOLINT(bugprone-macro-parentheses): a sum's term */
+
+/* In a function with a parameter pointer p: set the row's field to its
+ * default (folded to an integer constant). */
+#define HT_PARAM_X_SET_DEFAULT(id, name, field, unit, fmt, lo, hi, def, desc)                      \
+    p->field = HT_PARAM_RAW_##fmt(def);
+/* In a function with p and two ints, row = 0 and bad = 0 before the list:
+ * bad becomes the 1-based row of the first field outside its bounds. */
+#define HT_PARAM_X_FIRST_BAD(id, name, field, unit, fmt, lo, hi, def, desc)                        \
+    ++row;                                                                                         \
+    if ((bad == 0) && (((int32_t)p->field < (int32_t)HT_PARAM_RAW_##fmt(lo)) ||                    \
+                       ((int32_t)p->field > (int32_t)HT_PARAM_RAW_##fmt(hi)))) {                   \
+        bad = row;                                                                                 \
+    }
 
 /* The descriptions cost about 1.5 KB of flash: a target build leaves them out
  * ("") unless HT_PARAM_DESCRIPTIONS=1; the host build defines it
@@ -104,6 +129,8 @@
 #define HT_PARAM_LAW_COUNT   (0 HT_PARAMS_LAW(HT_PARAM_X_ONE))
 #define HT_PARAM_DCM_COUNT   (0 HT_PARAMS_DCM(HT_PARAM_X_ONE))
 #define HT_PARAM_GUIDE_COUNT (0 HT_PARAMS_GUIDE(HT_PARAM_X_ONE))
+#define HT_PARAM_ALT_COUNT   (0 HT_PARAMS_ALT(HT_PARAM_X_ONE))
+#define HT_PARAM_SPEED_COUNT (0 HT_PARAMS_SPEED(HT_PARAM_X_ONE))
 
 /* What one row says, for tools, messages and the cross-checks of the tests
  * (ht_param_info, ht_dcm_param_info). Bounds and default as stored. */
@@ -113,7 +140,7 @@ typedef struct {
     const char *format; /* HT_PFMT_NAME_* */
     const char *description;
     int32_t min_raw, max_raw, default_raw;
-    int32_t scale; /* stored = engineering value * scale: 65536, 100 or 1 */
+    int32_t scale; /* stored = engineering value * scale: 65536, 16384, 1000, 100 or 1 */
     uint8_t bytes; /* HT_PFMT_BYTES_* */
 } ht_param_info_t;
 

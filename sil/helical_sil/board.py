@@ -14,7 +14,7 @@ from typing import Any
 
 from helical_sil import params as ptable
 
-ABI_VERSION = 12
+ABI_VERSION = 13
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
@@ -30,13 +30,11 @@ class SilConfig(ctypes.Structure):
         ("estimator", _D * len(ptable.ESTIMATOR)),
         # ABI 12: the guidance between the modes and the law (the turn-rate trim)
         ("guidance", _D * len(ptable.GUIDANCE)),
+        # ABI 13: the altitude and airspeed holds, the same way
+        ("alt_hold", _D * len(ptable.ALT_HOLD)),
+        ("speed_hold", _D * len(ptable.SPEED_HOLD)),
         *((n, _D) for n in (
-            "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
-            "alt_max_pitch", "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
             "alt_integral_upright", "alt_integral_inverted",
-            "spd_throttle_trim", "spd_throttle_min", "spd_throttle_max",
-            "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch",
-            "spd_max_integral_throttle",
             "trim_aileron", "trim_elevator", "trim_rudder")),
         ("control_rate_hz", _I),
         # flight modes (ABI 6)
@@ -55,9 +53,6 @@ class SilConfig(ctypes.Structure):
             "aoa_trim_inverted_slope")),
         ("waypoint_count", _I),
         ("waypoints", (_D * 3) * MAX_WAYPOINTS),
-        # ABI 7: the altitude hold's airspeed protection (holds.h)
-        *((n, _D) for n in ("alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv_pitch_per_m_s",
-                            "alt_protect_tau_s")),
     ]
 
 
@@ -75,9 +70,8 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "aoa_inverted_slope_deg": 0.0, "aoa_trim_normal": 0.0, "aoa_trim_normal_slope": 0.0,
     "aoa_trim_inverted": 0.0, "aoa_trim_inverted_slope": 0.0,
     "waypoint_count": 0, "waypoints": [],
-    # ABI 7: the altitude hold's airspeed protection off (as before ABI 7)
-    "alt_protect_m_s": 0.0, "alt_protect_valid_m_s": 0.0, "alt_kv_pitch_per_m_s": 0.0,
-    "alt_protect_tau_s": 0.0,
+    # the altitude hold's initial integrators: none
+    "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
 }
 
 class SilSensors(ctypes.Structure):
@@ -171,27 +165,24 @@ def find_board_library(explicit: str | os.PathLike[str] | None = None) -> Path:
         "(cmake --workflow --preset host) or set HT_SIL_BOARD_LIB")
 
 
-def table_values(config: dict[str, Any]
-                 ) -> tuple[dict[str, float], dict[str, float], dict[str, float]]:
-    """The law's, the estimator's and the guidance's values of a board config,
-    in the table's units: config["law"], config["estimator"] and
-    config["guidance"] (name -> value) over the table's defaults; unknown
-    names are refused. The IMU runs at three samples
-    per control step unless said (the SIL's 120 Hz at 40 Hz)."""
-    law = ptable.law_defaults()
-    est = ptable.estimator_defaults()
-    guide = ptable.guidance_defaults()
-    est["imu_rate_hz"] = float(3 * int(config.get("control_rate_hz", 40)))
-    for group, known, into in (("law", ptable.LAW_BY_NAME, law),
-                               ("estimator", ptable.ESTIMATOR_BY_NAME, est),
-                               ("guidance", ptable.GUIDANCE_BY_NAME, guide)):
-        given = config.get(group, {})
-        for k, v in given.items():
-            if k not in known:
-                raise BoardError(f"board config {group}: unknown parameter '{k}' "
-                                 f"(the table's: {', '.join(known)})")
+def table_values(config: dict[str, Any]) -> dict[str, dict[str, float]]:
+    """Each table group's values of a board config, in the table's units, by
+    its config key (params.BOARD_GROUPS: "law", "estimator", "guidance",
+    "alt_hold", "speed_hold"): config[key] (name -> value) over the table's
+    defaults; unknown names are refused. The IMU runs at three samples per
+    control step unless said (the SIL's 120 Hz at 40 Hz)."""
+    out: dict[str, dict[str, float]] = {}
+    for key, _group, rows in ptable.BOARD_GROUPS:
+        into = {p.name: p.default for p in rows}
+        if key == "estimator":
+            into["imu_rate_hz"] = float(3 * int(config.get("control_rate_hz", 40)))
+        for k, v in config.get(key, {}).items():
+            if k not in into:
+                raise BoardError(f"board config {key}: unknown parameter '{k}' "
+                                 f"(the table's: {', '.join(p.name for p in rows)})")
             into[k] = float(v)
-    return law, est, guide
+        out[key] = into
+    return out
 
 
 class Board:
@@ -216,15 +207,17 @@ class Board:
         self._state = ctypes.create_string_buffer(int(lib.sil_board_size()))
         cfg = SilConfig()
         full = {**MODES_CONFIG_DEFAULTS, **config}
-        law, est, guide = table_values(full)
-        for i, p in enumerate(ptable.LAW):
-            cfg.law[i] = law[p.name]
-        for i, p in enumerate(ptable.ESTIMATOR):
-            cfg.estimator[i] = est[p.name]
-        for i, p in enumerate(ptable.GUIDANCE):
-            cfg.guidance[i] = guide[p.name]
+        values = table_values(full)
+        fields = {n for n, _t in SilConfig._fields_}
+        for k in full:
+            if k not in fields:
+                raise BoardError(f"board config: unknown key '{k}'")
+        for key, _group, rows in ptable.BOARD_GROUPS:
+            arr = getattr(cfg, key)
+            for i, p in enumerate(rows):
+                arr[i] = values[key][p.name]
         for name, _t in SilConfig._fields_:
-            if name in ("law", "estimator", "guidance"):
+            if name in values:
                 continue
             if name not in full:
                 raise BoardError(f"board config lacks '{name}'")
@@ -264,10 +257,11 @@ class Board:
 
 def compiled_table(lib_path: str | os.PathLike[str] | None = None) -> dict[str, list[dict[str, Any]]]:
     """The parameter table as the C side compiled it (sil_param_info), per
-    group ("LAW", "DCM", "GUIDE"): name, unit, format, stored bounds and default."""
+    group (params.BOARD_GROUPS' C names: "LAW", "DCM", "GUIDE", "ALT", "SPEED"):
+    name, unit, format, stored bounds and default."""
     lib = Board.library(lib_path)
     out: dict[str, list[dict[str, Any]]] = {}
-    for g, key in ((0, "LAW"), (1, "DCM"), (2, "GUIDE")):
+    for g, (_k, key, _rows) in enumerate(ptable.BOARD_GROUPS):
         rows = []
         for i in range(lib.sil_param_count(g)):
             r = lib.sil_param_info(g, i).contents

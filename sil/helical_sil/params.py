@@ -34,6 +34,8 @@ FORMATS: dict[str, Format] = {
     "CM16": Format("int16 x100", 100.0, 2, -(2 ** 15), 2 ** 15 - 1, True),
     "U8": Format("uint8", 1.0, 1, 0, 255, False),
     "U16": Format("uint16", 1.0, 2, 0, 65535, False),
+    "Q14": Format("Q14", 16384.0, 2, -(2 ** 15), 2 ** 15 - 1, True),
+    "MS16": Format("uint16 x1000", 1000.0, 2, 0, 65535, False),
 }
 
 
@@ -47,7 +49,7 @@ def _round_half_away(x: float) -> int:
 
 @dataclass(frozen=True)
 class Param:
-    group: str       # "LAW", "DCM" or "GUIDE"
+    group: str       # "LAW", "DCM", "GUIDE", "ALT" or "SPEED"
     index: int       # 0-based row in its group (the id is index + 1)
     id: str          # HT_P_<id> / HT_DCM_P_<id>
     name: str
@@ -185,6 +187,16 @@ GUIDANCE: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "GUIDE")
 LAW_BY_NAME: dict[str, Param] = {p.name: p for p in LAW}
 ESTIMATOR_BY_NAME: dict[str, Param] = {p.name: p for p in ESTIMATOR}
 GUIDANCE_BY_NAME: dict[str, Param] = {p.name: p for p in GUIDANCE}
+ALT_HOLD: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "ALT")
+SPEED_HOLD: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "SPEED")
+HOLDS: tuple[Param, ...] = ALT_HOLD + SPEED_HOLD
+HOLDS_BY_NAME: dict[str, Param] = {p.name: p for p in HOLDS}
+
+# The board configuration's groups (sil_config_t's arrays, SIL_GROUP_* order):
+# the key of each in a board config dict, the C side's group name, the rows.
+BOARD_GROUPS: tuple[tuple[str, str, tuple[Param, ...]], ...] = (
+    ("law", "LAW", LAW), ("estimator", "DCM", ESTIMATOR), ("guidance", "GUIDE", GUIDANCE),
+    ("alt_hold", "ALT", ALT_HOLD), ("speed_hold", "SPEED", SPEED_HOLD))
 
 
 def law_defaults() -> dict[str, float]:

@@ -46,9 +46,10 @@ from helical_sil.board import Board, BoardError, SilActuators, table_values
 
 SYNC = b"\xa5\x5a"
 PAYLOAD_MAX = 64
-PROTOCOL_VERSION = 6  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency;
+PROTOCOL_VERSION = 7  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latency;
 #                        5: CFG_LAW and CFG_EST laid out by the parameter table;
-#                        6: CFG_EST ends with the guidance's rows
+#                        6: CFG_EST ends with the guidance's rows;
+#                        7: CFG_ALT and CFG_SPD laid out by the parameter table
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)
@@ -60,6 +61,9 @@ LEN_STEP, LEN_TRUTH, LEN_IMU, LEN_SENSORS = 52, 42, 24, 28
 # the law's rows in order, CFG_EST the estimator's, then divider and timeout
 LEN_CFG_LAW = params.payload_length(params.LAW)
 LEN_CFG_EST = params.payload_length(params.ESTIMATOR) + 4 + params.payload_length(params.GUIDANCE)
+# the holds' rows, then u16 rate_hz (and for CFG_ALT two i32 Q20 integrators)
+LEN_CFG_ALT = params.payload_length(params.ALT_HOLD) + 10
+LEN_CFG_SPD = params.payload_length(params.SPEED_HOLD) + 2
 IMU_MAX = 32  # samples per control step (HIL_IMU_MAX = SIL_IMU_MAX)
 # The firmware's receive ring holds 255 bytes: a step's frames beyond this
 # many bytes are sent after a HELLO/READY round trip (the firmware has then
@@ -204,7 +208,8 @@ def cfg_est_payload(c: dict[str, Any]) -> bytes:
     """CFG_EST: the estimator's rows of the parameter table in order, as
     sil_board_init converts them, then the IMU timing (divider = imu / control
     rate; timeout = imu rate / 5), then the guidance's rows."""
-    _, est, guide = table_values(c)
+    v = table_values(c)
+    est, guide = v["estimator"], v["guidance"]
     imu, ctl = int(est["imu_rate_hz"]), int(c["control_rate_hz"])
     if ctl < 1 or imu < ctl or imu % ctl != 0 or imu // ctl > IMU_MAX:
         raise PilError(f"imu_rate_hz {imu} is not 1..{IMU_MAX} times control_rate_hz {ctl}")
@@ -217,7 +222,7 @@ def cfg_est_payload(c: dict[str, Any]) -> bytes:
 def cfg_law_payload(c: dict[str, Any]) -> bytes:
     """CFG_LAW: the law's rows of the parameter table in order, as
     sil_board_init converts them."""
-    law, _, _ = table_values(c)
+    law = table_values(c)["law"]
     p = params.payload(params.LAW, law)
     assert len(p) == LEN_CFG_LAW
     return p
@@ -244,25 +249,11 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
     c = config
     rate = int(c["control_rate_hz"])
     law = cfg_law_payload(c)
-    alt = b"".join(q16(c[k]).to_bytes(4, "little", signed=True) for k in (
-        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s", "alt_max_pitch",
-        "alt_max_integral_pitch"))
-    alt += cm32(c["alt_max_error_m"]).to_bytes(4, "little", signed=True)
-    alt += cm32(c["alt_integral_band_m"]).to_bytes(4, "little", signed=True)
-    alt += rate.to_bytes(2, "little")
+    v = table_values(c)
+    alt = params.payload(params.ALT_HOLD, v["alt_hold"]) + rate.to_bytes(2, "little")
     for k in ("alt_integral_upright", "alt_integral_inverted"):
         alt += to_fixed(c[k], 1048576.0, *I32).to_bytes(4, "little", signed=True)
-    # the airspeed protection (protocol 2), as sil_board_configure converts it
-    alt += cm32(c["alt_protect_m_s"]).to_bytes(4, "little", signed=True)
-    alt += cm32(c["alt_protect_valid_m_s"]).to_bytes(4, "little", signed=True)
-    alt += q16(c["alt_kv_pitch_per_m_s"]).to_bytes(4, "little", signed=True)
-    alt += _llround(c["alt_protect_tau_s"] * 1000.0).to_bytes(2, "little")  # range-checked: <= 60 s
-    spd = b"".join(q14(c[k]).to_bytes(2, "little", signed=True) for k in (
-        "spd_throttle_trim", "spd_throttle_min", "spd_throttle_max"))
-    spd += b"".join(q16(c[k]).to_bytes(4, "little", signed=True) for k in (
-        "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch"))
-    spd += q14(c["spd_max_integral_throttle"]).to_bytes(2, "little", signed=True)
-    spd += rate.to_bytes(2, "little")
+    spd = params.payload(params.SPEED_HOLD, v["speed_hold"]) + rate.to_bytes(2, "little")
     out = bytes((len(SIL_CHANNELS), 0))
     for ch in output_channels(c):
         out += bytes((ch["function"], ch["reversed"]))
@@ -270,7 +261,7 @@ def config_frames(config: dict[str, Any]) -> list[bytes]:
         out += ch["trim_us"].to_bytes(2, "little", signed=True)
         for k in ("travel_us", "min_us", "max_us", "failsafe_us"):
             out += ch[k].to_bytes(2, "little")
-    assert (len(alt), len(spd), len(out)) == (52, 22, 58)
+    assert (len(alt), len(spd), len(out)) == (LEN_CFG_ALT, LEN_CFG_SPD, 58)
     return [encode(ID_CFG_LAW, law), encode(ID_CFG_ALT, alt), encode(ID_CFG_SPD, spd),
             encode(ID_CFG_OUT, out), encode(ID_CFG_EST, cfg_est_payload(c))]
 

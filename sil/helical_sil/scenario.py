@@ -24,45 +24,27 @@ DEFAULT_AIRCRAFT_DIR = SIL_DIR / "scenarios" / "aircraft"
 # names, units, bounds and defaults; pitch_mode is not a [gains] key (each
 # [[command]] chooses the pitch method).
 LAW_PARAMS = tuple(p.name for p in params.LAW if p.name != "pitch_mode")
-HOLD_PARAMS = (
-    "alt_kp", "alt_ki", "alt_kd", "alt_max_pitch", "alt_max_integral", "alt_max_error_m",
-    "alt_integral_band_m",
-    "alt_integral_upright", "alt_integral_inverted",
-    "alt_protect_m_s", "alt_protect_valid_m_s", "alt_kv", "alt_protect_tau_s",
-    "spd_kp", "spd_ki", "spd_kff_pitch", "spd_max_integral",
-    "throttle_min", "throttle_max", "throttle_trim",
-)
+# The holds' rows of the table (params.HOLDS: alt_kp .. spd_max_integral,
+# throttle_min/max/trim), and the altitude hold's initial integrators, which
+# are harness state (a run that starts in trimmed flight), not parameters.
+INTEGRATOR_KEYS = ("alt_integral_upright", "alt_integral_inverted")
+HOLD_PARAMS = tuple(p.name for p in params.HOLDS) + INTEGRATOR_KEYS
 GAIN_KEYS = LAW_PARAMS + HOLD_PARAMS
-# Defaults of the parameters an aircraft file may leave out (control-law.md, holds).
+# Defaults of the parameters an aircraft file may leave out: the table's; the
+# integrators start at 0; throttle_trim has none here (absent: JSBSim's trim).
 GAIN_DEFAULTS: dict[str, float] = {
     **{k: params.LAW_BY_NAME[k].default for k in LAW_PARAMS},
-    "alt_kp": 0.01, "alt_ki": 0.0, "alt_kd": 0.0, "alt_max_pitch": 0.3,
-    "alt_max_integral": 0.2, "alt_max_error_m": 1000.0, "alt_integral_band_m": 10.0,
-    "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
-    "alt_protect_m_s": 0.0, "alt_protect_valid_m_s": 0.0, "alt_kv": 0.0,
-    "alt_protect_tau_s": 0.0,
-    "spd_kp": 0.1, "spd_ki": 0.02, "spd_kff_pitch": 1.0, "spd_max_integral": 0.5,
-    "throttle_min": 0.0, "throttle_max": 1.0,
+    **{p.name: p.default for p in params.HOLDS if p.name != "throttle_trim"},
+    **{k: 0.0 for k in INTEGRATOR_KEYS},
 }
 
 # The range of every gain key, in the file's units (_gains checks it, the
-# cross-field messages quote it). The law's come from the parameter table,
-# exactly as ht_init checks them; the holds' are written here (their checks
-# are ht_alt_hold_check, ht_speed_hold_check), so a file the loader accepts is
-# not refused by the board later.
-_GAIN_0_64 = (0.0, 64.0)  # holds.c: gains in [0, 64]
+# cross-field messages quote it): the table's rows, exactly as the board
+# checks them; the integrators within +-4 (the largest max_integral).
 GAIN_BOUNDS: dict[str, tuple[float, float]] = {
     **{k: (params.LAW_BY_NAME[k].min, params.LAW_BY_NAME[k].max) for k in LAW_PARAMS},
-    "alt_kp": _GAIN_0_64, "alt_ki": _GAIN_0_64, "alt_kd": _GAIN_0_64, "alt_kv": _GAIN_0_64,
-    "alt_max_pitch": (0.001, 4.0),                # the hold needs a ceiling > 0
-    "alt_max_integral": (0.0, 4.0),
-    "alt_max_error_m": (1.0, 10000.0), "alt_integral_band_m": (1.0, 10000.0),
-    "alt_integral_upright": (-4.0, 4.0), "alt_integral_inverted": (-4.0, 4.0),
-    "alt_protect_m_s": (0.0, 327.0), "alt_protect_valid_m_s": (0.0, 327.0),
-    "alt_protect_tau_s": (0.0, 60.0),
-    "spd_kp": _GAIN_0_64, "spd_ki": _GAIN_0_64, "spd_kff_pitch": _GAIN_0_64,
-    "spd_max_integral": (0.0, 1.0),
-    "throttle_min": (0.0, 1.0), "throttle_max": (0.0, 1.0), "throttle_trim": (0.0, 1.0),
+    **{p.name: (p.min, p.max) for p in params.HOLDS},
+    **{k: (-4.0, 4.0) for k in INTEGRATOR_KEYS},
 }
 # Pairs the board requires in order (low <= high). Checked on the merged gains
 # (defaults, aircraft file, scenario), so the error names both keys and the
@@ -430,6 +412,8 @@ def _gains(src: Path, prefix: str, table: dict[str, Any]) -> dict[str, float]:
             out[k] = 1.0 if (_bool(src, key, v) if isinstance(v, bool) else _int(src, key, v, 0, 1)) else 0.0
         elif k in params.LAW_BY_NAME:
             out[k] = _table_value(src, key, v, params.LAW_BY_NAME[k])
+        elif k in params.HOLDS_BY_NAME:
+            out[k] = _table_value(src, key, v, params.HOLDS_BY_NAME[k])
         else:
             lo, hi = GAIN_BOUNDS[k]
             out[k] = _num(src, key, v, lo, hi)

@@ -199,19 +199,13 @@ def board_config(sc: Scenario, trims: dict[str, float]) -> dict[str, Any]:
         # the law's rows of the parameter table, by their names (the scenario's
         # [gains] keys; pitch_mode is chosen per command, the table's default here)
         "law": {p.name: g[p.name] for p in params.LAW if p.name in g},
-        "alt_kp_pitch_per_m": g["alt_kp"], "alt_ki_pitch_per_m_s": g["alt_ki"],
-        "alt_kd_pitch_per_m_s": g["alt_kd"], "alt_max_pitch": g["alt_max_pitch"],
-        "alt_max_integral_pitch": g["alt_max_integral"], "alt_max_error_m": g["alt_max_error_m"],
-        "alt_integral_band_m": min(g["alt_integral_band_m"], g["alt_max_error_m"]),
+        # the holds' rows of the table, by their names (the [gains] keys); the
+        # trim throttle, unless the file gives it, is JSBSim's own trim
+        "alt_hold": {p.name: g[p.name] for p in params.ALT_HOLD},
+        "speed_hold": {p.name: g.get(p.name, trims["throttle"]) if p.name == "throttle_trim"
+                       else g[p.name] for p in params.SPEED_HOLD},
         "alt_integral_upright": g["alt_integral_upright"],
         "alt_integral_inverted": g["alt_integral_inverted"],
-        "alt_protect_m_s": g["alt_protect_m_s"], "alt_protect_valid_m_s": g["alt_protect_valid_m_s"],
-        "alt_kv_pitch_per_m_s": g["alt_kv"], "alt_protect_tau_s": g["alt_protect_tau_s"],
-        "spd_throttle_trim": g.get("throttle_trim", trims["throttle"]),
-        "spd_throttle_min": g["throttle_min"], "spd_throttle_max": g["throttle_max"],
-        "spd_kp_throttle_per_m_s": g["spd_kp"], "spd_ki_throttle_per_m": g["spd_ki"],
-        "spd_kff_throttle_per_pitch": g["spd_kff_pitch"],
-        "spd_max_integral_throttle": g["spd_max_integral"],
         "trim_aileron": trims["aileron"], "trim_elevator": trims["elevator"],
         "trim_rudder": trims["rudder"],
         "control_rate_hz": sc.control_rate_hz,

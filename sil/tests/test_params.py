@@ -42,8 +42,9 @@ def test_python_reads_the_table_as_the_compiler_did(board_lib: str) -> None:
     params.def agree, and a row the C side lacks (or adds) fails here."""
     c = compiled_table(board_lib)
     assert len(params.GUIDANCE) >= 5
-    for group, rows in (("LAW", params.LAW), ("DCM", params.ESTIMATOR),
-                        ("GUIDE", params.GUIDANCE)):
+    assert (len(params.ALT_HOLD), len(params.SPEED_HOLD)) == (11, 7)
+    assert set(c) == {"LAW", "DCM", "GUIDE", "ALT", "SPEED"}
+    for _key, group, rows in params.BOARD_GROUPS:
         assert [r["name"] for r in c[group]] == [p.name for p in rows]
         for r, p in zip(c[group], rows):
             assert r["unit"] == p.unit and r["format"] == p.fmt.name, p.name
@@ -57,13 +58,9 @@ def _config(**law: float) -> dict[str, object]:
     """A board config: the holds as test_run's, the law's table defaults with
     the given overrides."""
     cfg: dict[str, object] = {name: 0.0 for name in (
-        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s",
-        "alt_integral_upright", "alt_integral_inverted", "spd_kp_throttle_per_m_s",
-        "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch", "spd_throttle_min",
+        "alt_integral_upright", "alt_integral_inverted",
         "trim_aileron", "trim_elevator", "trim_rudder")}
-    cfg.update(alt_max_pitch=0.3, alt_max_integral_pitch=0.2, alt_max_error_m=100.0,
-               alt_integral_band_m=10.0, spd_throttle_trim=0.5, spd_throttle_max=1.0,
-               spd_max_integral_throttle=0.5, control_rate_hz=40, law=law)
+    cfg.update(control_rate_hz=40, law=law)
     return cfg
 
 
@@ -89,6 +86,36 @@ def test_the_board_takes_the_table_defaults_and_quotes_the_bounds(board_lib: str
     cfg["estimator"] = {"gps_latency": 500.0, "accel_band": 2.0 ** -16, "kp_yaw": 16.0}
     Board(cfg, board_lib)
     Board(_config(max_tilt=8.0, kp_aileron=64.0), board_lib)
+    # the holds, the same way (their names are the [gains] keys)
+    cfg = _config()
+    cfg["alt_hold"] = {"alt_protect_tau_s": 60.001}
+    with pytest.raises(BoardError, match=r"alt_protect_tau_s = 60\.001 is outside \[0, 60\] "
+                                         r"\(s, uint16 x1000\)"):
+        Board(cfg, board_lib)
+    cfg["alt_hold"] = {}
+    cfg["speed_hold"] = {"throttle_max": 1.0001}
+    with pytest.raises(BoardError, match=r"throttle_max = 1\.0001 is outside \[0, 1\] "
+                                         r"\(throttle, Q14\)"):
+        Board(cfg, board_lib)
+    # a joint limit is the firmware's own check, naming the field
+    cfg["speed_hold"] = {"throttle_min": 0.6, "throttle_max": 0.5}
+    with pytest.raises(BoardError, match=r"speed\.throttle_max"):
+        Board(cfg, board_lib)
+    cfg["speed_hold"] = {}
+    cfg["alt_hold"] = {"alt_integral_band_m": 20.0, "alt_max_error_m": 10.0}
+    with pytest.raises(BoardError, match=r"alt\.alt_integral_band_m"):
+        Board(cfg, board_lib)
+    # a key that is not the board's is refused, not ignored
+    cfg = _config()
+    cfg["alt_kp_pitch_per_m"] = 0.1
+    with pytest.raises(BoardError, match="unknown key 'alt_kp_pitch_per_m'"):
+        Board(cfg, board_lib)
+    # the edges themselves are accepted
+    cfg = _config()
+    cfg["alt_hold"] = {"alt_protect_tau_s": 60.0, "alt_max_pitch": 2.0 ** -16,
+                       "alt_max_error_m": 10000.0, "alt_integral_band_m": 10000.0}
+    cfg["speed_hold"] = {"throttle_min": 1.0, "throttle_max": 1.0, "spd_kff_pitch": 64.0}
+    Board(cfg, board_lib)
 
 
 def test_the_scenario_takes_names_defaults_and_bounds_from_the_table() -> None:
@@ -97,6 +124,10 @@ def test_the_scenario_takes_names_defaults_and_bounds_from_the_table() -> None:
         if p.name in LAW_PARAMS:
             assert GAIN_DEFAULTS[p.name] == p.default
             assert GAIN_BOUNDS[p.name] == (p.min, p.max)
+    for p in params.HOLDS:  # the holds' rows are [gains] keys under their own names
+        assert GAIN_BOUNDS[p.name] == (p.min, p.max)
+        assert GAIN_DEFAULTS.get(p.name, p.default) == p.default
+    assert "throttle_trim" not in GAIN_DEFAULTS  # absent: JSBSim's trim throttle
     # [estimator] keys: the table's rows the SIL does not derive, older spellings kept
     assert ESTIMATOR_KEYS["kp_rollpitch"] == ("kp_rollpitch", 1.0)
     assert ESTIMATOR_KEYS["gps_latency_s"] == ("gps_latency", 1000.0)
@@ -128,6 +159,12 @@ def _scenario(tmp_path: Path, extra: str) -> Path:
      "'guidance.turn_trim_max' = 0.6 is outside [0, 0.5] (ratio, Q16)"),
     ("[guidance]\nturn_trim = 2", "'guidance.turn_trim' = 2 is outside [0, 1] (0/1, uint8)"),
     ("[guidance]\nturn_trim_gain = 1", "turn_trim_gain"),
+    ("[gains]\nalt_max_pitch = 0",
+     "'gains.alt_max_pitch' = 0 is outside [1.52588e-05, 4] (pitch ratio, Q16)"),
+    ("[gains]\nalt_protect_tau_s = 61",
+     "'gains.alt_protect_tau_s' = 61 is outside [0, 60] (s, uint16 x1000)"),
+    ("[gains]\nspd_max_integral = 1.5",
+     "'gains.spd_max_integral' = 1.5 is outside [0, 1] (throttle, Q14)"),
 ])
 def test_scenario_errors_quote_the_tables_bounds(tmp_path: Path, extra: str,
                                                  message: str) -> None:
@@ -161,6 +198,17 @@ def test_hil_frames_carry_every_row() -> None:
         assert raw == p.default_raw, p.name
         off += p.fmt.nbytes
     assert off == len(law) == pil.LEN_CFG_LAW
+    # the holds: their rows, then the rate (and the altitude hold's integrators)
+    frames = pil.config_frames({"control_rate_hz": 40, "alt_integral_upright": 0.0,
+                                "alt_integral_inverted": 0.0, "trim_aileron": 0.0,
+                                "trim_elevator": 0.0, "trim_rudder": 0.0,
+                                "speed_hold": {"spd_kp": 0.25}})
+    alt, spd = frames[1][4:-2], frames[2][4:-2]  # sync, length, id ... CRC
+    assert alt[:-10] == params.payload(params.ALT_HOLD, {})
+    assert alt[-10:] == (40).to_bytes(2, "little") + bytes(8)
+    assert spd[:-2] == params.payload(params.SPEED_HOLD, {"spd_kp": 0.25})
+    assert int.from_bytes(spd[6:10], "little") == 16384  # spd_kp 0.25 in Q16 at offset 6
+    assert (len(alt), len(spd)) == (pil.LEN_CFG_ALT, pil.LEN_CFG_SPD) == (52, 22)
 
 
 def test_malformed_rows_are_refused() -> None:

@@ -62,19 +62,35 @@ def test_fixed_point_rounds_like_llround() -> None:
 
 
 def test_config_frames_have_the_documented_lengths() -> None:
-    cfg = {k: 0.0 for k in (
-        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s", "alt_kd_pitch_per_m_s", "alt_max_pitch",
-        "alt_max_integral_pitch", "alt_max_error_m", "alt_integral_band_m",
-        "alt_integral_upright", "alt_integral_inverted", "spd_throttle_trim", "spd_throttle_min",
-        "spd_throttle_max", "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m",
-        "spd_kff_throttle_per_pitch", "spd_max_integral_throttle", "trim_aileron",
-        "trim_elevator", "trim_rudder", "alt_protect_m_s", "alt_protect_valid_m_s",
-        "alt_kv_pitch_per_m_s", "alt_protect_tau_s")}
+    cfg = {k: 0.0 for k in ("alt_integral_upright", "alt_integral_inverted", "trim_aileron",
+                            "trim_elevator", "trim_rudder")}
     cfg.update(control_rate_hz=40, law={"schedule": 1})
     frames = pil.config_frames(cfg)
-    # protocol 6 (docs/hil-protocol.md): CFG_LAW 50, CFG_EST 60 with today's table
+    # protocol 7 (docs/hil-protocol.md): CFG_LAW 50, CFG_ALT 52, CFG_SPD 22,
+    # CFG_EST 60 with today's table
     assert [f[2] for f in frames] == [50, 52, 22, 58, 60]
     assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13, 0x15]
+
+
+def test_cfg_alt_and_cfg_spd_follow_the_table() -> None:
+    """The documented offsets of protocol 7 (hil_cfg_alt/spd_parse)."""
+    cfg = {"control_rate_hz": 50, "alt_integral_upright": 0.25, "alt_integral_inverted": -0.5,
+           "trim_aileron": 0.0, "trim_elevator": 0.0, "trim_rudder": 0.0,
+           "alt_hold": {"alt_kp": 0.5, "alt_max_error_m": 123.45, "alt_protect_m_s": 60.0,
+                        "alt_kv": 2.0, "alt_protect_tau_s": 1.5},
+           "speed_hold": {"throttle_trim": 0.25, "spd_kff_pitch": 1.5,
+                          "spd_max_integral": 0.75}}
+    frames = pil.config_frames(cfg)
+    a, s = frames[1][4:-2], frames[2][4:-2]
+    i32 = lambda p, o: int.from_bytes(p[o:o + 4], "little", signed=True)  # noqa: E731
+    u16 = lambda p, o: int.from_bytes(p[o:o + 2], "little")  # noqa: E731
+    assert i32(a, 0) == 32768 and i32(a, 20) == 12345 and i32(a, 24) == 1000
+    assert i32(a, 28) == 6000 and i32(a, 36) == 131072 and u16(a, 40) == 1500
+    assert u16(a, 42) == 50 and i32(a, 44) == 262144 and i32(a, 48) == -524288
+    assert int.from_bytes(s[0:2], "little", signed=True) == 4096
+    assert int.from_bytes(s[4:6], "little", signed=True) == 16384  # throttle_max default 1
+    assert i32(s, 14) == 98304 and int.from_bytes(s[18:20], "little") == 12288
+    assert u16(s, 20) == 50
 
 
 def test_cfg_law_and_cfg_est_follow_the_table() -> None:

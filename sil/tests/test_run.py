@@ -76,18 +76,20 @@ def test_repeated_run_in_a_new_process_is_bit_identical(tmp_path: Path, board_li
 
 
 def _config(**over: float) -> dict[str, object]:
-    """A board config: the law's table defaults (override by name), holds off."""
+    """A board config: the law's table defaults and the holds' gains at 0
+    (override any row by its name)."""
     cfg: dict[str, object] = {name: 0.0 for name in (
-        "alt_kp_pitch_per_m", "alt_ki_pitch_per_m_s",
-        "alt_kd_pitch_per_m_s", "alt_integral_upright", "alt_integral_inverted",
-        "spd_kp_throttle_per_m_s", "spd_ki_throttle_per_m", "spd_kff_throttle_per_pitch",
-        "spd_throttle_min", "trim_aileron", "trim_elevator", "trim_rudder")}
-    cfg.update(alt_max_pitch=0.3, alt_max_integral_pitch=0.2,
-               alt_max_error_m=100.0, alt_integral_band_m=10.0, spd_throttle_trim=0.5,
-               spd_throttle_max=1.0, spd_max_integral_throttle=0.5, control_rate_hz=40)
-    law = {k: v for k, v in over.items() if k in params.LAW_BY_NAME}
-    cfg.update({k: v for k, v in over.items() if k not in law})
-    cfg["law"] = law
+        "alt_integral_upright", "alt_integral_inverted",
+        "trim_aileron", "trim_elevator", "trim_rudder")}
+    cfg["control_rate_hz"] = 40
+    zero = {"alt_kp", "alt_ki", "alt_kd", "spd_kp", "spd_ki", "spd_kff_pitch"}
+    holds = {p.name: 0.0 for p in params.HOLDS if p.name in zero}
+    holds.update({k: v for k, v in over.items() if k in params.HOLDS_BY_NAME})
+    cfg["alt_hold"] = {k: v for k, v in holds.items() if k.startswith("alt_")}
+    cfg["speed_hold"] = {k: v for k, v in holds.items() if not k.startswith("alt_")}
+    cfg["law"] = {k: v for k, v in over.items() if k in params.LAW_BY_NAME}
+    cfg.update({k: v for k, v in over.items()
+                if k not in params.LAW_BY_NAME and k not in params.HOLDS_BY_NAME})
     return cfg
 
 
@@ -132,7 +134,7 @@ def test_board_output_stage_adds_trims_and_clamps(board_lib: str) -> None:
 
 
 def test_board_altitude_hold_sign_upright_and_inverted(board_lib: str) -> None:
-    b = Board(_config(alt_kp_pitch_per_m=0.01), board_lib)
+    b = Board(_config(alt_kp=0.01), board_lib)
     a = _step(b, hold=1, alt_cmd=110.0)
     up_pitch, up_elev = a.pitch_cmd, a.elevator
     a = _step(b, hold=1, alt_cmd=110.0, inverted=1, z=-1.0)

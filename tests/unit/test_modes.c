@@ -603,12 +603,12 @@ static void test_init_names_each_bad_field(void)
             want = "aoa.load_max";
             break;
         case HT_MODES_P_ALT_HOLD:
-            b.alt.rate_hz = 50u;
-            want = "alt";
+            b.alt.rate_hz = 50u; /* legal alone, not the modes' rate */
+            want = "alt.rate_hz";
             break;
         default:
             b.speed.throttle_max = -1;
-            want = "speed";
+            want = "speed.throttle_max";
             break;
         }
         ht_modes_t mm;
