@@ -9,73 +9,6 @@
 /* pi / 180 in Q30. */
 #define DEG_TO_RAD_Q30 18740330L
 
-static const char *const aoa_names[HT_AOA_P_COUNT] = {
-    "",
-    "enabled",
-    "v_ref_cm_s",
-    "v_enable_cm_s",
-    "load_max",
-    "aoa_normal_deg",
-    "aoa_normal_slope_deg",
-    "aoa_inverted_deg",
-    "aoa_inverted_slope_deg",
-    "trim_normal",
-    "trim_normal_slope",
-    "trim_inverted",
-    "trim_inverted_slope",
-};
-
-const char *ht_aoa_param_name(ht_aoa_param_id_t id)
-{
-    if ((unsigned)id >= (unsigned)HT_AOA_P_COUNT) {
-        return "";
-    }
-    return aoa_names[id];
-}
-
-static int deg_ok(q16_t d)
-{
-    return (d >= (-45 * Q16_ONE)) && (d <= (45 * Q16_ONE));
-}
-
-static int unit_ok(q14_t t)
-{
-    return t >= -Q14_ONE && t <= Q14_ONE;
-}
-
-static ht_aoa_param_id_t check(const ht_aoa_params_t *p)
-{
-    if (p->enabled > 1u) {
-        return HT_AOA_P_ENABLED;
-    }
-    if (p->v_ref_cm_s < 100) {
-        return HT_AOA_P_V_REF;
-    }
-    if (p->v_enable_cm_s < 100 || (int32_t)p->v_ref_cm_s > (8 * (int32_t)p->v_enable_cm_s)) {
-        return HT_AOA_P_V_ENABLE;
-    }
-    if (p->load_max < Q16_ONE || p->load_max > (8 * Q16_ONE)) {
-        return HT_AOA_P_LOAD_MAX;
-    }
-    const q16_t degs[4] = {p->aoa_normal_deg, p->aoa_normal_slope_deg, p->aoa_inverted_deg,
-                           p->aoa_inverted_slope_deg};
-    for (unsigned i = 0; i < 4u; i++) {
-        if (!deg_ok(degs[i])) {
-            const unsigned id = (unsigned)HT_AOA_P_AOA_NORMAL + i;
-            return (ht_aoa_param_id_t)id;
-        }
-    }
-    const q14_t trims[4] = {p->trim_normal, p->trim_normal_slope, p->trim_inverted,
-                            p->trim_inverted_slope};
-    for (unsigned i = 0; i < 4u; i++) {
-        if (!unit_ok(trims[i])) {
-            const unsigned id = (unsigned)HT_AOA_P_TRIM_NORMAL + i;
-            return (ht_aoa_param_id_t)id;
-        }
-    }
-    return HT_AOA_P_NONE;
-}
-
 int ht_aoa_init(ht_aoa_t *m, const ht_aoa_params_t *p, ht_aoa_param_id_t *bad_field)
 {
     if (bad_field != NULL) {
@@ -86,7 +19,7 @@ int ht_aoa_init(ht_aoa_t *m, const ht_aoa_params_t *p, ht_aoa_param_id_t *bad_fi
     }
     ht_aoa_t z = {0};
     *m = z;
-    ht_aoa_param_id_t bad = check(p);
+    const ht_aoa_param_id_t bad = ht_aoa_first_bad(p);
     if (bad != HT_AOA_P_NONE) {
         if (bad_field != NULL) {
             *bad_field = bad;

@@ -7,19 +7,6 @@
 
 #define DEG_TO_RAD_Q30 18740330L /* pi / 180 in Q30 */
 
-static const char *const fbw_names[HT_FBW_P_COUNT] = {
-    "",          "deadband_us",    "turn_rate_max_deg_s",
-    "pitch_max", "inverted_input", "inverted_threshold_us",
-};
-
-const char *ht_fbw_param_name(ht_fbw_param_id_t id)
-{
-    if ((unsigned)id >= (unsigned)HT_FBW_P_COUNT) {
-        return "";
-    }
-    return fbw_names[id];
-}
-
 int ht_fbw_init(ht_fbw_t *f, const ht_fbw_params_t *p, ht_fbw_param_id_t *bad_field)
 {
     if (bad_field != NULL) {
@@ -30,21 +17,7 @@ int ht_fbw_init(ht_fbw_t *f, const ht_fbw_params_t *p, ht_fbw_param_id_t *bad_fi
     }
     ht_fbw_t z = {0};
     *f = z;
-    ht_fbw_param_id_t bad = HT_FBW_P_NONE;
-    if (p->deadband_us > 90u) {
-        bad = HT_FBW_P_DEADBAND;
-    } else if (p->turn_rate_max_deg_s < 1 || p->turn_rate_max_deg_s > 360) {
-        bad = HT_FBW_P_TURN_RATE_MAX;
-    } else if (p->pitch_max <= 0 || p->pitch_max > (4 * Q16_ONE)) {
-        bad = HT_FBW_P_PITCH_MAX;
-    } else if (p->inverted_input > 15u) {
-        bad = HT_FBW_P_INVERTED_INPUT;
-    } else if (p->inverted_threshold_us < OS_RC_VALID_MIN_US ||
-               p->inverted_threshold_us > OS_RC_VALID_MAX_US) {
-        bad = HT_FBW_P_INVERTED_THRESHOLD;
-    } else {
-        /* every field is in range: bad stays HT_FBW_P_NONE */
-    }
+    const ht_fbw_param_id_t bad = ht_fbw_first_bad(p);
     if (bad != HT_FBW_P_NONE) {
         if (bad_field != NULL) {
             *bad_field = bad;

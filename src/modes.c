@@ -11,28 +11,20 @@
 #define G_CM_S2_Q16         64268042L /* 980.665 cm/s^2 in Q16 */
 #define PITCH_MATCH_MAX_Q14 (4L * 16384L)
 
-static const char *const modes_names[HT_MODES_P_COUNT] = {
-    "",
-    "rc.aileron",
-    "rc.elevator",
-    "rc.rudder",
-    "rc.throttle",
-    "mode_input",
-    "mode_threshold_us",
-    "rc_loss_ticks",
-    "rc_recover_ticks",
-    "blend_ticks",
-    "turn_slew_deg_s2",
-    "pitch_slew_per_s",
-    "cruise_cm_s",
-    "rate_hz",
-    "controller",
-    "fbw",
-    "nav",
-    "aoa",
-    "alt",
-    "speed",
+/* The names of what is not a row of the table (HT_MODES_P_RC_AILERON on). */
+static const char *const other_names[HT_MODES_P_COUNT - HT_MODES_P_RC_AILERON] = {
+    "rc.aileron", "rc.elevator", "rc.rudder", "rc.throttle", "mode_threshold_us",
+    "rate_hz",    "controller",  "fbw",       "nav",         "aoa",
+    "alt",        "speed",
 };
+
+static const char *field_name(ht_modes_param_id_t id)
+{
+    if (id >= HT_MODES_P_RC_AILERON) {
+        return other_names[(unsigned)id - (unsigned)HT_MODES_P_RC_AILERON];
+    }
+    return ht_param_row_name(ht_modes_param_info(id));
+}
 
 static void append(char *buf, unsigned size, unsigned *at, const char *s)
 {
@@ -55,7 +47,7 @@ void ht_modes_bad_name(const ht_modes_bad_t *bad, char *buf, unsigned size)
     if (bad == NULL || (unsigned)bad->field >= (unsigned)HT_MODES_P_COUNT) {
         return;
     }
-    append(buf, size, &at, modes_names[bad->field]);
+    append(buf, size, &at, field_name(bad->field));
     const char *sub = NULL;
     if (bad->field == HT_MODES_P_FBW) {
         sub = ht_fbw_param_name((ht_fbw_param_id_t)bad->sub);
@@ -96,16 +88,9 @@ void ht_modes_params_default(ht_modes_params_t *p)
     d.rc.throttle.travel_us = 1000u;
     d.rc.rudder = stick;
     d.rc.rudder.input = 3u;
-    d.mode_input = 4u;
     d.mode_threshold_us[0] = 1250u;
     d.mode_threshold_us[1] = 1750u;
     d.mode_threshold_us[2] = 2100u;
-    d.rc_loss_ticks = 20u;    /* 0.5 s at 40 Hz */
-    d.rc_recover_ticks = 20u; /* 0.5 s */
-    d.blend_ticks = 20u;      /* 0.5 s */
-    d.turn_slew_deg_s2 = 180; /* 0 -> 60 deg/s in 1/3 s */
-    d.pitch_slew_per_s = Q16_ONE;
-    d.cruise_cm_s = 1500;
     d.rate_hz = 40u;
     d.fbw = fbw;
     d.nav = nav;
@@ -113,10 +98,18 @@ void ht_modes_params_default(ht_modes_params_t *p)
     ht_alt_hold_params_default(&d.alt, d.rate_hz);
     ht_speed_hold_params_default(&d.speed, d.rate_hz);
     *p = d;
+    /* the modes' own rows: the table's defaults (mode switch on input 4,
+     * 0.5 s of RC loss, recovery and blend at 40 Hz, 180 deg/s^2, 15 m/s) */
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
+    HT_PARAMS_MODES(HT_PARAM_X_SET_DEFAULT)
 }
 
 static ht_modes_param_id_t check_own(const ht_modes_params_t *p)
 {
+    const ht_modes_param_id_t row = ht_modes_first_bad_row(p);
+    if (row != HT_MODES_P_NONE) {
+        return row;
+    }
     // cppcheck-suppress misra-c2012-9.3 ; false positive: all 4 elements are initialized
     const os_rc_cal_t *cals[] = {&p->rc.aileron, &p->rc.elevator, &p->rc.rudder, &p->rc.throttle};
     for (unsigned i = 0; i < 4u; i++) {
@@ -125,30 +118,9 @@ static ht_modes_param_id_t check_own(const ht_modes_params_t *p)
             return (ht_modes_param_id_t)id;
         }
     }
-    if (p->mode_input >= HT_MODES_RC_MAX) {
-        return HT_MODES_P_MODE_INPUT;
-    }
     const uint16_t *t = p->mode_threshold_us;
     if (t[0] <= OS_RC_VALID_MIN_US || t[0] >= t[1] || t[1] >= t[2] || t[2] > OS_RC_VALID_MAX_US) {
         return HT_MODES_P_MODE_THRESHOLD;
-    }
-    if (p->rc_loss_ticks < 1u || p->rc_loss_ticks > 10000u) {
-        return HT_MODES_P_RC_LOSS_TICKS;
-    }
-    if (p->rc_recover_ticks < 1u || p->rc_recover_ticks > 10000u) {
-        return HT_MODES_P_RC_RECOVER_TICKS;
-    }
-    if (p->blend_ticks < 1u || p->blend_ticks > 10000u) {
-        return HT_MODES_P_BLEND_TICKS;
-    }
-    if (p->turn_slew_deg_s2 < 1 || p->turn_slew_deg_s2 > 10000) {
-        return HT_MODES_P_TURN_SLEW;
-    }
-    if (p->pitch_slew_per_s <= 0 || p->pitch_slew_per_s > (64 * Q16_ONE)) {
-        return HT_MODES_P_PITCH_SLEW;
-    }
-    if (p->cruise_cm_s < 100) {
-        return HT_MODES_P_CRUISE;
     }
     if (p->rate_hz < 1u || p->rate_hz > 1000u) {
         return HT_MODES_P_RATE_HZ;

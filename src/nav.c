@@ -11,29 +11,6 @@
 #define DEG_TO_RAD_Q30 18740330L /* pi / 180 in Q30 */
 #define Q28_ONE        ((int32_t)HT_Q28_ONE)
 
-static const char *const nav_names[HT_NAV_P_COUNT] = {
-    "",
-    "law",
-    "turn_rate_max_deg_s",
-    "l1_m",
-    "arrival_radius_m",
-    "loiter_radius_m",
-    "home_alt_m",
-    "v_floor_cm_s",
-    "course_min_cm_s",
-    "loop",
-    "count",
-    "waypoints",
-};
-
-const char *ht_nav_param_name(ht_nav_param_id_t id)
-{
-    if ((unsigned)id >= (unsigned)HT_NAV_P_COUNT) {
-        return "";
-    }
-    return nav_names[id];
-}
-
 static int32_t abs32_sat(int32_t v)
 {
     return (v == INT32_MIN) ? INT32_MAX : ((v < 0) ? -v : v);
@@ -42,32 +19,9 @@ static int32_t abs32_sat(int32_t v)
 static ht_nav_param_id_t check(const ht_nav_params_t *p, const ht_waypoint_t *w, uint16_t count,
                                uint16_t *bad_wp)
 {
-    if (p->law > (uint8_t)HT_GUIDE_L1) {
-        return HT_NAV_P_LAW;
-    }
-    if (p->turn_rate_max_deg_s < 1 || p->turn_rate_max_deg_s > 360) {
-        return HT_NAV_P_TURN_RATE_MAX;
-    }
-    if (p->l1_m < 5u || p->l1_m > 600u) {
-        return HT_NAV_P_L1;
-    }
-    if (p->arrival_radius_m < 1u || p->arrival_radius_m > 5000u) {
-        return HT_NAV_P_ARRIVAL_RADIUS;
-    }
-    if (p->loiter_radius_m < 5u || p->loiter_radius_m > 5000u) {
-        return HT_NAV_P_LOITER_RADIUS;
-    }
-    if (p->home_alt_m < -HT_NAV_ALT_MAX_M || p->home_alt_m > HT_NAV_ALT_MAX_M) {
-        return HT_NAV_P_HOME_ALT;
-    }
-    if (p->v_floor_cm_s < 100 || p->v_floor_cm_s > 10000) {
-        return HT_NAV_P_V_FLOOR;
-    }
-    if (p->course_min_cm_s < 0 || p->course_min_cm_s > 5000) {
-        return HT_NAV_P_COURSE_MIN;
-    }
-    if (p->loop > 1u) {
-        return HT_NAV_P_LOOP;
+    const ht_nav_param_id_t row = ht_nav_first_bad(p);
+    if (row != HT_NAV_P_NONE) {
+        return row;
     }
     if (count > HT_NAV_MAX_WAYPOINTS || (count > 0u && w == NULL)) {
         return HT_NAV_P_WAYPOINT_COUNT;

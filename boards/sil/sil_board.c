@@ -122,6 +122,14 @@ size_t sil_actuators_size(void)
 /* The flight modes' parameters (physical units -> modes.h) and the
  * waypoints; every value is range-checked by ht_modes_init after
  * conversion, so only what would not convert into its field is refused here. */
+static int group_params(int group, const double *values, const char *prefix, void *dst,
+                        void (*set)(void *, int, int64_t), char *err, size_t err_len);
+static void set_modes(void *dst, int id, int64_t raw);
+static void set_fbw(void *dst, int id, int64_t raw);
+static void set_nav(void *dst, int id, int64_t raw);
+static void set_aoa(void *dst, int id, int64_t raw);
+
+/* The flight modes: the waypoints, then the table's groups. */
 static int modes_params(sil_board_t *b, const sil_config_t *cfg, ht_modes_params_t *p, char *err,
                         size_t err_len)
 {
@@ -138,63 +146,12 @@ static int modes_params(sil_board_t *b, const sil_config_t *cfg, ht_modes_params
         b->waypoints[i].east_m = (int32_t)llround(cfg->waypoints[i][1]);
         b->waypoints[i].alt_m = (int32_t)llround(cfg->waypoints[i][2]);
     }
-    const double dvals[] = {cfg->nav_turn_rate_max_deg_s, cfg->nav_l1_m,
-                            cfg->nav_arrival_radius_m,    cfg->nav_loiter_radius_m,
-                            cfg->nav_home_alt_m,          cfg->cruise_m_s,
-                            cfg->fbw_turn_rate_max_deg_s, cfg->fbw_pitch_max,
-                            cfg->fbw_deadband_us,         cfg->turn_slew_deg_s2,
-                            cfg->pitch_slew_per_s,        cfg->aoa_v_ref_m_s,
-                            cfg->aoa_v_enable_m_s,        cfg->aoa_load_max,
-                            cfg->aoa_normal_deg,          cfg->aoa_normal_slope_deg,
-                            cfg->aoa_inverted_deg,        cfg->aoa_inverted_slope_deg,
-                            cfg->aoa_trim_normal,         cfg->aoa_trim_normal_slope,
-                            cfg->aoa_trim_inverted,       cfg->aoa_trim_inverted_slope};
-    static const char *const dnames[] = {"nav.turn_rate_max_deg_s", "nav.l1_m",
-                                         "nav.arrival_radius_m",    "nav.loiter_radius_m",
-                                         "nav.home_alt_m",          "nav.cruise_m_s",
-                                         "fbw.turn_rate_max_deg_s", "fbw.pitch_max",
-                                         "fbw.deadband_us",         "modes.turn_slew_deg_s2",
-                                         "modes.pitch_slew_per_s",  "aoa.v_ref_m_s",
-                                         "aoa.v_enable_m_s",        "aoa.load_max",
-                                         "aoa.aoa_normal_deg",      "aoa.aoa_normal_slope_deg",
-                                         "aoa.aoa_inverted_deg",    "aoa.aoa_inverted_slope_deg",
-                                         "aoa.trim_normal",         "aoa.trim_normal_slope",
-                                         "aoa.trim_inverted",       "aoa.trim_inverted_slope"};
-    for (size_t i = 0; i < sizeof dvals / sizeof dvals[0]; ++i) {
-        if (!in_range(dvals[i], -30000.0, 30000.0)) {
-            return fail(err, err_len, dnames[i]);
-        }
+    if (group_params(SIL_GROUP_MODES, cfg->modes, "modes.", p, set_modes, err, err_len) != 0 ||
+        group_params(SIL_GROUP_FBW, cfg->fbw, "fbw.", &p->fbw, set_fbw, err, err_len) != 0 ||
+        group_params(SIL_GROUP_NAV, cfg->nav, "nav.", &p->nav, set_nav, err, err_len) != 0 ||
+        group_params(SIL_GROUP_AOA, cfg->aoa, "aoa.", &p->aoa, set_aoa, err, err_len) != 0) {
+        return 1;
     }
-    p->rc_loss_ticks = (uint16_t)to_fixed(cfg->rc_loss_ticks, 1.0, 0, UINT16_MAX);
-    p->rc_recover_ticks = (uint16_t)to_fixed(cfg->rc_recover_ticks, 1.0, 0, UINT16_MAX);
-    p->blend_ticks = (uint16_t)to_fixed(cfg->blend_ticks, 1.0, 0, UINT16_MAX);
-    p->turn_slew_deg_s2 = (int16_t)to_fixed(cfg->turn_slew_deg_s2, 1.0, INT16_MIN, INT16_MAX);
-    p->pitch_slew_per_s = to_q16(cfg->pitch_slew_per_s);
-    p->cruise_cm_s = to_cm16(cfg->cruise_m_s);
-    p->fbw.turn_rate_max_deg_s =
-        (int16_t)to_fixed(cfg->fbw_turn_rate_max_deg_s, 1.0, INT16_MIN, INT16_MAX);
-    p->fbw.pitch_max = to_q16(cfg->fbw_pitch_max);
-    p->fbw.deadband_us = (uint16_t)to_fixed(cfg->fbw_deadband_us, 1.0, 0, UINT16_MAX);
-    p->nav.law = (uint8_t)(cfg->nav_law != 0 ? HT_GUIDE_L1 : HT_GUIDE_HEADING);
-    p->nav.loop = (cfg->nav_loop != 0) ? 1u : 0u;
-    p->nav.turn_rate_max_deg_s =
-        (int16_t)to_fixed(cfg->nav_turn_rate_max_deg_s, 1.0, INT16_MIN, INT16_MAX);
-    p->nav.l1_m = (uint16_t)to_fixed(cfg->nav_l1_m, 1.0, 0, UINT16_MAX);
-    p->nav.arrival_radius_m = (uint16_t)to_fixed(cfg->nav_arrival_radius_m, 1.0, 0, UINT16_MAX);
-    p->nav.loiter_radius_m = (uint16_t)to_fixed(cfg->nav_loiter_radius_m, 1.0, 0, UINT16_MAX);
-    p->nav.home_alt_m = (int32_t)llround(cfg->nav_home_alt_m);
-    p->aoa.enabled = (cfg->aoa_enabled != 0) ? 1u : 0u;
-    p->aoa.v_ref_cm_s = to_cm16(cfg->aoa_v_ref_m_s);
-    p->aoa.v_enable_cm_s = to_cm16(cfg->aoa_v_enable_m_s);
-    p->aoa.load_max = to_q16(cfg->aoa_load_max);
-    p->aoa.aoa_normal_deg = to_q16(cfg->aoa_normal_deg);
-    p->aoa.aoa_normal_slope_deg = to_q16(cfg->aoa_normal_slope_deg);
-    p->aoa.aoa_inverted_deg = to_q16(cfg->aoa_inverted_deg);
-    p->aoa.aoa_inverted_slope_deg = to_q16(cfg->aoa_inverted_slope_deg);
-    p->aoa.trim_normal = to_q14(cfg->aoa_trim_normal);
-    p->aoa.trim_normal_slope = to_q14(cfg->aoa_trim_normal_slope);
-    p->aoa.trim_inverted = to_q14(cfg->aoa_trim_inverted);
-    p->aoa.trim_inverted_slope = to_q14(cfg->aoa_trim_inverted_slope);
     return 0;
 }
 
@@ -242,6 +199,14 @@ static int table_value(double v, const ht_param_info_t *info, const char *prefix
     SIL_SET(HT_ALT_P_, id, field, fmt)
 #define SIL_SET_SPEED(id, name, field, unit, fmt, lo, hi, def, desc)                               \
     SIL_SET(HT_SPEED_P_, id, field, fmt)
+#define SIL_SET_MODES(id, name, field, unit, fmt, lo, hi, def, desc)                               \
+    SIL_SET(HT_MODES_P_, id, field, fmt)
+#define SIL_SET_FBW(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    SIL_SET(HT_FBW_P_, id, field, fmt)
+#define SIL_SET_NAV(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    SIL_SET(HT_NAV_P_, id, field, fmt)
+#define SIL_SET_AOA(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
+    SIL_SET(HT_AOA_P_, id, field, fmt)
 
 static void set_law(void *dst, int id, int64_t raw)
 {
@@ -293,6 +258,46 @@ static void set_speed(void *dst, int id, int64_t raw)
     }
 }
 
+static void set_modes(void *dst, int id, int64_t raw)
+{
+    ht_modes_params_t *p = dst;
+    switch ((ht_modes_param_id_t)id) {
+        HT_PARAMS_MODES(SIL_SET_MODES)
+    default:
+        break;
+    }
+}
+
+static void set_fbw(void *dst, int id, int64_t raw)
+{
+    ht_fbw_params_t *p = dst;
+    switch ((ht_fbw_param_id_t)id) {
+        HT_PARAMS_FBW(SIL_SET_FBW)
+    default:
+        break;
+    }
+}
+
+static void set_nav(void *dst, int id, int64_t raw)
+{
+    ht_nav_params_t *p = dst;
+    switch ((ht_nav_param_id_t)id) {
+        HT_PARAMS_NAV(SIL_SET_NAV)
+    default:
+        break;
+    }
+}
+
+static void set_aoa(void *dst, int id, int64_t raw)
+{
+    ht_aoa_params_t *p = dst;
+    switch ((ht_aoa_param_id_t)id) {
+        HT_PARAMS_AOA(SIL_SET_AOA)
+    default:
+        break;
+    }
+}
+
 const ht_param_info_t *sil_param_info(int group, int index)
 {
     const int id = index + 1;
@@ -307,6 +312,14 @@ const ht_param_info_t *sil_param_info(int group, int index)
         return ht_alt_hold_param_info((ht_alt_param_id_t)id);
     case SIL_GROUP_SPEED_HOLD:
         return ht_speed_hold_param_info((ht_speed_param_id_t)id);
+    case SIL_GROUP_MODES:
+        return ht_modes_param_info((ht_modes_param_id_t)id);
+    case SIL_GROUP_FBW:
+        return ht_fbw_param_info((ht_fbw_param_id_t)id);
+    case SIL_GROUP_NAV:
+        return ht_nav_param_info((ht_nav_param_id_t)id);
+    case SIL_GROUP_AOA:
+        return ht_aoa_param_info((ht_aoa_param_id_t)id);
     default:
         return NULL;
     }
@@ -314,9 +327,10 @@ const ht_param_info_t *sil_param_info(int group, int index)
 
 int sil_param_count(int group)
 {
-    static const int counts[SIL_GROUP_COUNT] = {HT_PARAM_LAW_COUNT, HT_PARAM_DCM_COUNT,
-                                                HT_PARAM_GUIDE_COUNT, HT_PARAM_ALT_COUNT,
-                                                HT_PARAM_SPEED_COUNT};
+    static const int counts[SIL_GROUP_COUNT] = {
+        HT_PARAM_LAW_COUNT, HT_PARAM_DCM_COUNT,   HT_PARAM_GUIDE_COUNT,
+        HT_PARAM_ALT_COUNT, HT_PARAM_SPEED_COUNT, HT_PARAM_MODES_COUNT,
+        HT_PARAM_FBW_COUNT, HT_PARAM_NAV_COUNT,   HT_PARAM_AOA_COUNT};
     return (group >= 0 && group < SIL_GROUP_COUNT) ? counts[group] : 0;
 }
 

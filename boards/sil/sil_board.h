@@ -31,10 +31,11 @@ extern "C" {
 #endif
 
 #define SIL_BOARD_ABI_VERSION                                                                      \
-    13 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+    14 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
           10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table;               \
           12: guidance[] (the turn-rate trim);                                                     \
-          13: alt_hold[] and speed_hold[] from the parameter table */
+          13: alt_hold[] and speed_hold[] from the parameter table;                                \
+          14: modes[], fbw[], nav[], aoa[] from the parameter table */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -72,19 +73,13 @@ typedef struct {
      * sil_command_t go through the flight modes. */
     int32_t modes_enabled;
     int32_t modes_pitch_mode; /* ht_pitch_mode_t of the controller the modes drive */
-    int32_t nav_law;          /* ht_guide_law_t */
-    int32_t nav_loop;
-    int32_t rc_loss_ticks, rc_recover_ticks, blend_ticks;
-    double nav_turn_rate_max_deg_s, nav_l1_m, nav_arrival_radius_m, nav_loiter_radius_m;
-    double nav_home_alt_m; /* above the same datum as altitude_m (here: sea level) */
-    double cruise_m_s;
-    double fbw_turn_rate_max_deg_s, fbw_pitch_max, fbw_deadband_us;
-    double turn_slew_deg_s2, pitch_slew_per_s;
-    /* the AoA / elevator-trim model (aoa_trim.h) */
-    int32_t aoa_enabled;
-    double aoa_v_ref_m_s, aoa_v_enable_m_s, aoa_load_max;
-    double aoa_normal_deg, aoa_normal_slope_deg, aoa_inverted_deg, aoa_inverted_slope_deg;
-    double aoa_trim_normal, aoa_trim_normal_slope, aoa_trim_inverted, aoa_trim_inverted_slope;
+    /* ABI 14: the modes' own rows, fly-by-wire, the waypoint guidance and the
+     * AoA / elevator-trim model, one value per row of their tables (nav's
+     * home_alt_m above the same datum as altitude_m: here sea level) */
+    double modes[HT_PARAM_MODES_COUNT];
+    double fbw[HT_PARAM_FBW_COUNT];
+    double nav[HT_PARAM_NAV_COUNT];
+    double aoa[HT_PARAM_AOA_COUNT];
     /* waypoints: north, east (m from the start point), altitude (m, same datum
      * as altitude_m); rounded to whole metres */
     int32_t waypoint_count;
@@ -207,7 +202,11 @@ enum {
     SIL_GROUP_GUIDANCE = 2,
     SIL_GROUP_ALT_HOLD = 3,
     SIL_GROUP_SPEED_HOLD = 4,
-    SIL_GROUP_COUNT = 5
+    SIL_GROUP_MODES = 5,
+    SIL_GROUP_FBW = 6,
+    SIL_GROUP_NAV = 7,
+    SIL_GROUP_AOA = 8,
+    SIL_GROUP_COUNT = 9
 };
 
 /* The parameter table's rows, for the harness's cross-check

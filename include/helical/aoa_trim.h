@@ -36,52 +36,41 @@
 
 #include <stdint.h>
 
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Parameters in physical units (degrees, cm/s, surface fractions). */
+/* The parameters in physical units (degrees, cm/s, surface fractions): the
+ * rows of params.def HT_PARAMS_AOA. Joint limit: v_ref <= 8 * v_enable
+ * (named HT_AOA_P_V_ENABLE). */
 typedef struct {
-    uint8_t enabled;            /* 0: the model gives offset 0 and trim 0 */
-    int16_t v_ref_cm_s;         /* reference airspeed of the loading, [100, 32767] */
-    int16_t v_enable_cm_s;      /* model off below, [100, 32767], v_ref <= 8 * v_enable */
-    q16_t load_max;             /* limit on |load| (near knife edge), [1, 8] */
-    q16_t aoa_normal_deg;       /* AoA at w = 0, upright, [-45, 45] deg */
-    q16_t aoa_normal_slope_deg; /* AoA per unit w, upright, [-45, 45] deg */
-    q16_t aoa_inverted_deg;     /* the same, inverted (usually negative) */
-    q16_t aoa_inverted_slope_deg;
-    q14_t trim_normal;       /* elevator trim at w = 0, upright, [-1, 1] */
-    q14_t trim_normal_slope; /* per unit w, [-1, 1] */
-    q14_t trim_inverted;     /* the same, inverted (usually negative) */
-    q14_t trim_inverted_slope;
+    HT_PARAMS_AOA(HT_PARAM_X_FIELD)
 } ht_aoa_params_t;
 
-/* Off, v_ref 15 m/s, enabled from 8 m/s, load limit 4, all coefficients 0. */
+/* The table's defaults: off, v_ref 15 m/s, enabled from 8 m/s, load limit
+ * 4, all coefficients 0. */
 #define HT_AOA_PARAMS_DEFAULT                                                                      \
     {                                                                                              \
-        0u, 1500, 800, 4 * Q16_ONE, 0, 0, 0, 0, 0, 0, 0, 0                                         \
+        HT_PARAMS_AOA(HT_PARAM_X_DEFAULT)                                                          \
     }
 
+/* HT_AOA_P_<ID> of each row, in table order. */
+#define HT_PARAM_X_AOA_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_AOA_P_##id,
 typedef enum {
     HT_AOA_P_NONE = 0,
-    HT_AOA_P_ENABLED,
-    HT_AOA_P_V_REF,
-    HT_AOA_P_V_ENABLE,
-    HT_AOA_P_LOAD_MAX,
-    HT_AOA_P_AOA_NORMAL,
-    HT_AOA_P_AOA_NORMAL_SLOPE,
-    HT_AOA_P_AOA_INVERTED,
-    HT_AOA_P_AOA_INVERTED_SLOPE,
-    HT_AOA_P_TRIM_NORMAL,
-    HT_AOA_P_TRIM_NORMAL_SLOPE,
-    HT_AOA_P_TRIM_INVERTED,
-    HT_AOA_P_TRIM_INVERTED_SLOPE,
-    HT_AOA_P_COUNT
+    HT_PARAMS_AOA(HT_PARAM_X_AOA_ID) HT_AOA_P_COUNT
 } ht_aoa_param_id_t;
 
-/* The field name of a parameter ("v_enable_cm_s", ...), or "". */
+/* The table's row of a parameter, or NULL. */
+const ht_param_info_t *ht_aoa_param_info(ht_aoa_param_id_t id);
+
+/* The first row outside its bounds (table order), then the joint limit, or
+ * HT_AOA_P_NONE. p must not be NULL. */
+ht_aoa_param_id_t ht_aoa_first_bad(const ht_aoa_params_t *p);
+
 const char *ht_aoa_param_name(ht_aoa_param_id_t id);
 
 /* The converted model. Read-only after ht_aoa_init. */

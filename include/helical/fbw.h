@@ -28,36 +28,39 @@
 #include <stdint.h>
 
 #include "helical/mixer.h"
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+/* The parameters: the rows of params.def HT_PARAMS_FBW (names, units,
+ * ranges, defaults). */
 typedef struct {
-    uint16_t deadband_us;           /* [0, 90] (always below the travel, >= 100) */
-    int16_t turn_rate_max_deg_s;    /* turn rate at full aileron stick, [1, 360] */
-    q16_t pitch_max;                /* pitch ratio at full elevator stick, (0, 4] */
-    uint8_t inverted_input;         /* RC input of the inverted switch, [0, 15] */
-    uint16_t inverted_threshold_us; /* in [OS_RC_VALID_MIN_US, OS_RC_VALID_MAX_US] */
+    HT_PARAMS_FBW(HT_PARAM_X_FIELD)
 } ht_fbw_params_t;
 
-/* Deadband 8 us, 60 deg/s, pitch ratio 0.5 (about 27 deg), switch on input 5
- * at 1500 us. */
+/* The table's defaults: deadband 8 us, 60 deg/s, pitch ratio 0.5 (about
+ * 27 deg), switch on input 5 at 1500 us. */
 #define HT_FBW_PARAMS_DEFAULT                                                                      \
     {                                                                                              \
-        8u, 60, Q16_ONE / 2, 5u, 1500u                                                             \
+        HT_PARAMS_FBW(HT_PARAM_X_DEFAULT)                                                          \
     }
 
+/* HT_FBW_P_<ID> of each row, in table order. */
+#define HT_PARAM_X_FBW_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_FBW_P_##id,
 typedef enum {
     HT_FBW_P_NONE = 0,
-    HT_FBW_P_DEADBAND,
-    HT_FBW_P_TURN_RATE_MAX,
-    HT_FBW_P_PITCH_MAX,
-    HT_FBW_P_INVERTED_INPUT,
-    HT_FBW_P_INVERTED_THRESHOLD,
-    HT_FBW_P_COUNT
+    HT_PARAMS_FBW(HT_PARAM_X_FBW_ID) HT_FBW_P_COUNT
 } ht_fbw_param_id_t;
+
+/* The table's row of a parameter, or NULL. */
+const ht_param_info_t *ht_fbw_param_info(ht_fbw_param_id_t id);
+
+/* The first row outside its bounds (table order), or HT_FBW_P_NONE. p must
+ * not be NULL. */
+ht_fbw_param_id_t ht_fbw_first_bad(const ht_fbw_params_t *p);
 
 const char *ht_fbw_param_name(ht_fbw_param_id_t id);
 

@@ -89,16 +89,14 @@ typedef enum {
     HT_MODE_COUNT
 } ht_mode_t;
 
+/* The parameters: the modes' own rows of params.def (HT_PARAMS_MODES:
+ * names, units, ranges, defaults), then what is not a row (the RC
+ * calibrations, the switch thresholds, the control rate) and the blocks,
+ * each with its own rows. */
 typedef struct {
+    HT_PARAMS_MODES(HT_PARAM_X_FIELD)
     os_rc_map_t rc;                /* manual sticks; aileron and elevator are also FBW's */
-    uint8_t mode_input;            /* RC input of the mode switch, < HT_MODES_RC_MAX */
     uint16_t mode_threshold_us[3]; /* strictly increasing, within the valid RC window */
-    uint16_t rc_loss_ticks;        /* bad ticks in a row that make the RC lost, [1, 10000] */
-    uint16_t rc_recover_ticks;     /* good ticks in a row that end the failsafe, [1, 10000] */
-    uint16_t blend_ticks;          /* manual <-> law blend length, [1, 10000] */
-    int16_t turn_slew_deg_s2;      /* turn-rate target slew, [1, 10000] deg/s per s */
-    q16_t pitch_slew_per_s;        /* pitch-ratio target slew per second, (0, 64] */
-    int16_t cruise_cm_s;           /* speed-hold target in waypoint and RTH, [100, 32767] */
     uint16_t rate_hz;              /* control rate, [1, 1000]; also alt.rate_hz, speed.rate_hz */
     ht_fbw_params_t fbw;
     ht_nav_params_t nav;
@@ -111,20 +109,15 @@ typedef struct {
  * 0 aileron, 1 elevator, 2 throttle, 3 rudder, 4 mode, 5 inverted). */
 void ht_modes_params_default(ht_modes_params_t *p);
 
+/* HT_MODES_P_<ID> of each own row (table order), then what is not a row. */
+#define HT_PARAM_X_MODES_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_MODES_P_##id,
 typedef enum {
     HT_MODES_P_NONE = 0,
-    HT_MODES_P_RC_AILERON,
+    HT_PARAMS_MODES(HT_PARAM_X_MODES_ID) HT_MODES_P_RC_AILERON,
     HT_MODES_P_RC_ELEVATOR,
     HT_MODES_P_RC_RUDDER,
     HT_MODES_P_RC_THROTTLE,
-    HT_MODES_P_MODE_INPUT,
     HT_MODES_P_MODE_THRESHOLD,
-    HT_MODES_P_RC_LOSS_TICKS,
-    HT_MODES_P_RC_RECOVER_TICKS,
-    HT_MODES_P_BLEND_TICKS,
-    HT_MODES_P_TURN_SLEW,
-    HT_MODES_P_PITCH_SLEW,
-    HT_MODES_P_CRUISE,
     HT_MODES_P_RATE_HZ,
     HT_MODES_P_CONTROLLER, /* the ht_controller_t is NULL or not initialised */
     HT_MODES_P_FBW,        /* see bad->sub (ht_fbw_param_id_t) */
@@ -142,6 +135,13 @@ typedef struct {
                           ALT_HOLD / SPEED_HOLD */
     uint16_t waypoint; /* the bad waypoint's index for HT_NAV_P_WAYPOINT */
 } ht_modes_bad_t;
+
+/* The table's row of one of the modes' own parameters, or NULL. */
+const ht_param_info_t *ht_modes_param_info(ht_modes_param_id_t id);
+
+/* The first of the modes' own rows outside its bounds (table order), or
+ * HT_MODES_P_NONE. p must not be NULL. */
+ht_modes_param_id_t ht_modes_first_bad_row(const ht_modes_params_t *p);
 
 /* "mode_threshold_us", "fbw.deadband_us", "nav.l1_m", ... into buf (always
  * terminated; at most size - 1 characters). */

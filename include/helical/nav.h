@@ -61,6 +61,7 @@
 
 #include <stdint.h>
 
+#include "helical/params.h"
 #include "helical/q14.h"
 
 #ifdef __cplusplus
@@ -79,40 +80,35 @@ typedef struct {
     int32_t north_m, east_m, alt_m;
 } ht_waypoint_t;
 
+/* The parameters: the rows of params.def HT_PARAMS_NAV (names, units,
+ * ranges, defaults). */
 typedef struct {
-    uint8_t law;                 /* ht_guide_law_t */
-    int16_t turn_rate_max_deg_s; /* [1, 360] */
-    uint16_t l1_m;               /* L1 distance, [5, 600] */
-    uint16_t arrival_radius_m;   /* [1, 5000] */
-    uint16_t loiter_radius_m;    /* [5, 5000] */
-    int32_t home_alt_m;          /* RTH and empty-list altitude, +-HT_NAV_ALT_MAX_M */
-    int16_t v_floor_cm_s;        /* ground-speed floor of the L1 law and the loiter, [100, 10000] */
-    int16_t course_min_cm_s;     /* below: the heading vector gives the direction, [0, 5000] */
-    uint8_t loop;                /* 1: after the last waypoint start over; 0: loiter there */
+    HT_PARAMS_NAV(HT_PARAM_X_FIELD)
 } ht_nav_params_t;
 
-/* Heading law, 60 deg/s, L1 60 m, arrival 20 m, loiter 60 m, home 100 m,
- * floor 5 m/s, course from 2 m/s, looping. */
+/* The table's defaults: heading law, 60 deg/s, L1 60 m, arrival 20 m, loiter
+ * 60 m, home 100 m, floor 5 m/s, course from 2 m/s, looping. */
 #define HT_NAV_PARAMS_DEFAULT                                                                      \
     {                                                                                              \
-        (uint8_t) HT_GUIDE_HEADING, 60, 60u, 20u, 60u, 100, 500, 200, 1u                           \
+        HT_PARAMS_NAV(HT_PARAM_X_DEFAULT)                                                          \
     }
 
+/* HT_NAV_P_<ID> of each row, in table order, then the waypoint list's. */
+#define HT_PARAM_X_NAV_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_NAV_P_##id,
 typedef enum {
     HT_NAV_P_NONE = 0,
-    HT_NAV_P_LAW,
-    HT_NAV_P_TURN_RATE_MAX,
-    HT_NAV_P_L1,
-    HT_NAV_P_ARRIVAL_RADIUS,
-    HT_NAV_P_LOITER_RADIUS,
-    HT_NAV_P_HOME_ALT,
-    HT_NAV_P_V_FLOOR,
-    HT_NAV_P_COURSE_MIN,
-    HT_NAV_P_LOOP,
-    HT_NAV_P_WAYPOINT_COUNT, /* count > HT_NAV_MAX_WAYPOINTS, or count > 0 with a NULL list */
-    HT_NAV_P_WAYPOINT,       /* a waypoint out of range: index in *bad_waypoint */
+    HT_PARAMS_NAV(HT_PARAM_X_NAV_ID) HT_NAV_P_WAYPOINT_COUNT, /* count > HT_NAV_MAX_WAYPOINTS,
+                                                                 or count > 0 with a NULL list */
+    HT_NAV_P_WAYPOINT, /* a waypoint out of range: index in *bad_waypoint */
     HT_NAV_P_COUNT
 } ht_nav_param_id_t;
+
+/* The table's row of a parameter, or NULL (also for the waypoint ids). */
+const ht_param_info_t *ht_nav_param_info(ht_nav_param_id_t id);
+
+/* The first row outside its bounds (table order), or HT_NAV_P_NONE (the
+ * waypoints are ht_nav_init's). p must not be NULL. */
+ht_nav_param_id_t ht_nav_first_bad(const ht_nav_params_t *p);
 
 const char *ht_nav_param_name(ht_nav_param_id_t id);
 

@@ -25,6 +25,8 @@
 #define HT_PFMT_TYPE_U16  uint16_t
 #define HT_PFMT_TYPE_Q14  q14_t
 #define HT_PFMT_TYPE_MS16 uint16_t
+#define HT_PFMT_TYPE_I16  int16_t
+#define HT_PFMT_TYPE_I32  int32_t
 
 #define HT_PFMT_SCALE_Q16  65536.0
 #define HT_PFMT_SCALE_CM32 100.0
@@ -33,6 +35,8 @@
 #define HT_PFMT_SCALE_U16  1.0
 #define HT_PFMT_SCALE_Q14  16384.0
 #define HT_PFMT_SCALE_MS16 1000.0
+#define HT_PFMT_SCALE_I16  1.0
+#define HT_PFMT_SCALE_I32  1.0
 
 #define HT_PFMT_ISCALE_Q16  65536
 #define HT_PFMT_ISCALE_CM32 100
@@ -41,6 +45,8 @@
 #define HT_PFMT_ISCALE_U16  1
 #define HT_PFMT_ISCALE_Q14  16384
 #define HT_PFMT_ISCALE_MS16 1000
+#define HT_PFMT_ISCALE_I16  1
+#define HT_PFMT_ISCALE_I32  1
 
 #define HT_PFMT_BYTES_Q16  4u
 #define HT_PFMT_BYTES_CM32 4u
@@ -49,6 +55,8 @@
 #define HT_PFMT_BYTES_U16  2u
 #define HT_PFMT_BYTES_Q14  2u
 #define HT_PFMT_BYTES_MS16 2u
+#define HT_PFMT_BYTES_I16  2u
+#define HT_PFMT_BYTES_I32  4u
 
 #define HT_PFMT_NAME_Q16  "Q16"
 #define HT_PFMT_NAME_CM32 "int32 x100"
@@ -57,6 +65,8 @@
 #define HT_PFMT_NAME_U16  "uint16"
 #define HT_PFMT_NAME_Q14  "Q14"
 #define HT_PFMT_NAME_MS16 "uint16 x1000"
+#define HT_PFMT_NAME_I16  "int16"
+#define HT_PFMT_NAME_I32  "int32"
 
 /* An engineering value as the field stores it, rounded half away from zero
  * (as Q16_FROM_REAL). Only for the table's constants. One macro per format,
@@ -71,6 +81,8 @@
 #define HT_PARAM_RAW_U16(v)           HT_PARAM_RAW_(uint16_t, 1.0, v)
 #define HT_PARAM_RAW_Q14(v)           HT_PARAM_RAW_(q14_t, 16384.0, v)
 #define HT_PARAM_RAW_MS16(v)          HT_PARAM_RAW_(uint16_t, 1000.0, v)
+#define HT_PARAM_RAW_I16(v)           HT_PARAM_RAW_(int16_t, 1.0, v)
+#define HT_PARAM_RAW_I32(v)           HT_PARAM_RAW_(int32_t, 1.0, v)
 
 /* --- row expanders (X of HT_PARAMS_LAW / HT_PARAMS_DCM) ------------------- */
 
@@ -131,6 +143,10 @@
 #define HT_PARAM_GUIDE_COUNT (0 HT_PARAMS_GUIDE(HT_PARAM_X_ONE))
 #define HT_PARAM_ALT_COUNT   (0 HT_PARAMS_ALT(HT_PARAM_X_ONE))
 #define HT_PARAM_SPEED_COUNT (0 HT_PARAMS_SPEED(HT_PARAM_X_ONE))
+#define HT_PARAM_MODES_COUNT (0 HT_PARAMS_MODES(HT_PARAM_X_ONE))
+#define HT_PARAM_FBW_COUNT   (0 HT_PARAMS_FBW(HT_PARAM_X_ONE))
+#define HT_PARAM_NAV_COUNT   (0 HT_PARAMS_NAV(HT_PARAM_X_ONE))
+#define HT_PARAM_AOA_COUNT   (0 HT_PARAMS_AOA(HT_PARAM_X_ONE))
 
 /* What one row says, for tools, messages and the cross-checks of the tests
  * (ht_param_info, ht_dcm_param_info). Bounds and default as stored. */

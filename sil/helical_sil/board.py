@@ -14,7 +14,7 @@ from typing import Any
 
 from helical_sil import params as ptable
 
-ABI_VERSION = 13
+ABI_VERSION = 14
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
@@ -38,19 +38,12 @@ class SilConfig(ctypes.Structure):
             "trim_aileron", "trim_elevator", "trim_rudder")),
         ("control_rate_hz", _I),
         # flight modes (ABI 6)
-        *((n, _I) for n in ("modes_enabled", "modes_pitch_mode", "nav_law", "nav_loop",
-                            "rc_loss_ticks", "rc_recover_ticks", "blend_ticks")),
-        *((n, _D) for n in (
-            "nav_turn_rate_max_deg_s", "nav_l1_m", "nav_arrival_radius_m", "nav_loiter_radius_m",
-            "nav_home_alt_m", "cruise_m_s",
-            "fbw_turn_rate_max_deg_s", "fbw_pitch_max", "fbw_deadband_us",
-            "turn_slew_deg_s2", "pitch_slew_per_s")),
-        ("aoa_enabled", _I),
-        *((n, _D) for n in (
-            "aoa_v_ref_m_s", "aoa_v_enable_m_s", "aoa_load_max",
-            "aoa_normal_deg", "aoa_normal_slope_deg", "aoa_inverted_deg", "aoa_inverted_slope_deg",
-            "aoa_trim_normal", "aoa_trim_normal_slope", "aoa_trim_inverted",
-            "aoa_trim_inverted_slope")),
+        *((n, _I) for n in ("modes_enabled", "modes_pitch_mode")),
+        # ABI 14: the modes' own rows, fly-by-wire, navigation, the AoA model
+        ("modes", _D * len(ptable.MODES)),
+        ("fbw", _D * len(ptable.FBW)),
+        ("nav", _D * len(ptable.NAV)),
+        ("aoa", _D * len(ptable.AOA)),
         ("waypoint_count", _I),
         ("waypoints", (_D * 3) * MAX_WAYPOINTS),
     ]
@@ -59,20 +52,12 @@ class SilConfig(ctypes.Structure):
 # Defaults of the ABI-6 flight-mode fields: modes off (the scenario's commands
 # fly the board, as before ABI 6); and of the ABI-7 fields.
 MODES_CONFIG_DEFAULTS: dict[str, Any] = {
-    "modes_enabled": 0, "modes_pitch_mode": 0, "nav_law": 0, "nav_loop": 1,
-    "rc_loss_ticks": 20, "rc_recover_ticks": 20, "blend_ticks": 20,
-    "nav_turn_rate_max_deg_s": 60.0, "nav_l1_m": 60.0, "nav_arrival_radius_m": 20.0,
-    "nav_loiter_radius_m": 60.0, "nav_home_alt_m": 100.0, "cruise_m_s": 15.0,
-    "fbw_turn_rate_max_deg_s": 60.0, "fbw_pitch_max": 0.5, "fbw_deadband_us": 8.0,
-    "turn_slew_deg_s2": 180.0, "pitch_slew_per_s": 1.0,
-    "aoa_enabled": 0, "aoa_v_ref_m_s": 15.0, "aoa_v_enable_m_s": 8.0, "aoa_load_max": 4.0,
-    "aoa_normal_deg": 0.0, "aoa_normal_slope_deg": 0.0, "aoa_inverted_deg": 0.0,
-    "aoa_inverted_slope_deg": 0.0, "aoa_trim_normal": 0.0, "aoa_trim_normal_slope": 0.0,
-    "aoa_trim_inverted": 0.0, "aoa_trim_inverted_slope": 0.0,
+    "modes_enabled": 0, "modes_pitch_mode": 0,
     "waypoint_count": 0, "waypoints": [],
     # the altitude hold's initial integrators: none
     "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
 }
+
 
 class SilSensors(ctypes.Structure):
     _fields_ = [

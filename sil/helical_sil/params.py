@@ -36,6 +36,8 @@ FORMATS: dict[str, Format] = {
     "U16": Format("uint16", 1.0, 2, 0, 65535, False),
     "Q14": Format("Q14", 16384.0, 2, -(2 ** 15), 2 ** 15 - 1, True),
     "MS16": Format("uint16 x1000", 1000.0, 2, 0, 65535, False),
+    "I16": Format("int16", 1.0, 2, -(2 ** 15), 2 ** 15 - 1, True),
+    "I32": Format("int32", 1.0, 4, -(2 ** 31), 2 ** 31 - 1, True),
 }
 
 
@@ -49,7 +51,7 @@ def _round_half_away(x: float) -> int:
 
 @dataclass(frozen=True)
 class Param:
-    group: str       # "LAW", "DCM", "GUIDE", "ALT" or "SPEED"
+    group: str       # "LAW", "DCM", "GUIDE", "ALT", "SPEED", "MODES", "FBW", "NAV", "AOA"
     index: int       # 0-based row in its group (the id is index + 1)
     id: str          # HT_P_<id> / HT_DCM_P_<id>
     name: str
@@ -191,12 +193,21 @@ ALT_HOLD: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "ALT")
 SPEED_HOLD: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "SPEED")
 HOLDS: tuple[Param, ...] = ALT_HOLD + SPEED_HOLD
 HOLDS_BY_NAME: dict[str, Param] = {p.name: p for p in HOLDS}
+MODES: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "MODES")
+FBW: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "FBW")
+NAV: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "NAV")
+AOA: tuple[Param, ...] = tuple(p for p in TABLE if p.group == "AOA")
+# the flight modes' groups by their scenario table ([modes], [fbw], [nav], [aoa])
+MODE_GROUPS: dict[str, dict[str, Param]] = {
+    "modes": {p.name: p for p in MODES}, "fbw": {p.name: p for p in FBW},
+    "nav": {p.name: p for p in NAV}, "aoa": {p.name: p for p in AOA}}
 
 # The board configuration's groups (sil_config_t's arrays, SIL_GROUP_* order):
 # the key of each in a board config dict, the C side's group name, the rows.
 BOARD_GROUPS: tuple[tuple[str, str, tuple[Param, ...]], ...] = (
     ("law", "LAW", LAW), ("estimator", "DCM", ESTIMATOR), ("guidance", "GUIDE", GUIDANCE),
-    ("alt_hold", "ALT", ALT_HOLD), ("speed_hold", "SPEED", SPEED_HOLD))
+    ("alt_hold", "ALT", ALT_HOLD), ("speed_hold", "SPEED", SPEED_HOLD),
+    ("modes", "MODES", MODES), ("fbw", "FBW", FBW), ("nav", "NAV", NAV), ("aoa", "AOA", AOA))
 
 
 def law_defaults() -> dict[str, float]:

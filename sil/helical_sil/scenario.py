@@ -104,6 +104,7 @@ RUN_METRICS = (
 )
 
 # --- flight modes (issue 5): [modes], [nav], [fbw], [aoa], [[waypoint]], [[rc]] ---
+_MODES_ROW, _NAV_ROW, _FBW_ROW = (params.MODE_GROUPS[k] for k in ("modes", "nav", "fbw"))
 MODE_PULSES_US = {"manual": 1000, "fbw": 1500, "waypoint": 2000, "rth": 2150}
 MODES_KEYS = ("pitch_mode", "rc_loss_ticks", "rc_recover_ticks", "blend_ticks",
               "turn_slew_deg_s2", "pitch_slew_per_s", "cruise_m_s")
@@ -156,24 +157,25 @@ class RcEntry:
 
 @dataclass
 class ModesConfig:
-    """The flight modes' parameters (physical units, the board's names)."""
+    """The flight modes' parameters (physical units, the board's names);
+    defaults and bounds are the parameter table's rows (params.MODE_GROUPS)."""
     pitch_mode: str = "earth_frame"
-    rc_loss_ticks: int = 20
-    rc_recover_ticks: int = 20
-    blend_ticks: int = 20
-    turn_slew_deg_s2: float = 180.0
-    pitch_slew_per_s: float = 1.0
+    rc_loss_ticks: int = int(_MODES_ROW["rc_loss_ticks"].default)
+    rc_recover_ticks: int = int(_MODES_ROW["rc_recover_ticks"].default)
+    blend_ticks: int = int(_MODES_ROW["blend_ticks"].default)
+    turn_slew_deg_s2: float = _MODES_ROW["turn_slew_deg_s2"].default
+    pitch_slew_per_s: float = _MODES_ROW["pitch_slew_per_s"].default
     cruise_m_s: float | None = None  # default: the initial airspeed
     law: str = "heading"
-    nav_turn_rate_max_deg_s: float = 60.0
-    l1_m: float = 60.0
-    arrival_radius_m: float = 20.0
-    loiter_radius_m: float = 60.0
+    nav_turn_rate_max_deg_s: float = _NAV_ROW["turn_rate_max_deg_s"].default
+    l1_m: float = _NAV_ROW["l1_m"].default
+    arrival_radius_m: float = _NAV_ROW["arrival_radius_m"].default
+    loiter_radius_m: float = _NAV_ROW["loiter_radius_m"].default
     home_alt_m: float | None = None  # default: the initial altitude
-    loop: bool = True
-    fbw_turn_rate_max_deg_s: float = 60.0
-    fbw_pitch_max: float = 0.5
-    fbw_deadband_us: float = 8.0
+    loop: bool = bool(_NAV_ROW["loop"].default)
+    fbw_turn_rate_max_deg_s: float = _FBW_ROW["turn_rate_max_deg_s"].default
+    fbw_pitch_max: float = _FBW_ROW["pitch_max"].default
+    fbw_deadband_us: float = _FBW_ROW["deadband_us"].default
     aoa: dict[str, float] = field(default_factory=dict)
     waypoints: list[tuple[float, float, float]] = field(default_factory=list)
     rc: list[RcEntry] = field(default_factory=list)
@@ -477,59 +479,43 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
 
 def _parse_mode_tables(src: Path, tables: dict[str, dict[str, Any]], mc: ModesConfig) -> None:
     """[modes], [nav], [fbw], [aoa] into mc (keys given override mc's values)."""
+    def row(table: str, k: str, v: Any) -> float:
+        """A value of one of the modes' table rows: its bounds are the table's."""
+        return _table_value(src, f"{table}.{k}", v, params.MODE_GROUPS[table][k])
+
     t = tables.get("modes", {})
     _check_keys(src, "modes", t, MODES_KEYS)
     if "pitch_mode" in t:
         mc.pitch_mode = _str(src, "modes.pitch_mode", t["pitch_mode"], PITCH_MODES)
     for k in ("rc_loss_ticks", "rc_recover_ticks", "blend_ticks"):
         if k in t:
-            setattr(mc, k, _int(src, f"modes.{k}", t[k], 1, 10000))
-    if "turn_slew_deg_s2" in t:
-        mc.turn_slew_deg_s2 = _num(src, "modes.turn_slew_deg_s2", t["turn_slew_deg_s2"], 1, 10000)
-    if "pitch_slew_per_s" in t:
-        mc.pitch_slew_per_s = _num(src, "modes.pitch_slew_per_s", t["pitch_slew_per_s"], 0.01, 64)
-    if "cruise_m_s" in t:
-        mc.cruise_m_s = _num(src, "modes.cruise_m_s", t["cruise_m_s"], 1.0, 327.0)
+            setattr(mc, k, int(row("modes", k, t[k])))
+    for k in ("turn_slew_deg_s2", "pitch_slew_per_s", "cruise_m_s"):
+        if k in t:
+            setattr(mc, k, row("modes", k, t[k]))
     t = tables.get("nav", {})
     _check_keys(src, "nav", t, NAV_KEYS)
     if "law" in t:
         mc.law = _str(src, "nav.law", t["law"], NAV_LAWS)
-    if "turn_rate_max_deg_s" in t:
-        mc.nav_turn_rate_max_deg_s = _num(src, "nav.turn_rate_max_deg_s", t["turn_rate_max_deg_s"],
-                                          1, 360)
-    if "l1_m" in t:
-        mc.l1_m = _num(src, "nav.l1_m", t["l1_m"], 5, 600)
-    if "arrival_radius_m" in t:
-        mc.arrival_radius_m = _num(src, "nav.arrival_radius_m", t["arrival_radius_m"], 1, 5000)
-    if "loiter_radius_m" in t:
-        mc.loiter_radius_m = _num(src, "nav.loiter_radius_m", t["loiter_radius_m"], 5, 5000)
-    if "home_alt_m" in t:
-        mc.home_alt_m = _num(src, "nav.home_alt_m", t["home_alt_m"], 10.0, 20000.0)
     if "loop" in t:
         mc.loop = _bool(src, "nav.loop", t["loop"])
+    for k, attr in (("turn_rate_max_deg_s", "nav_turn_rate_max_deg_s"), ("l1_m", "l1_m"),
+                    ("arrival_radius_m", "arrival_radius_m"),
+                    ("loiter_radius_m", "loiter_radius_m"), ("home_alt_m", "home_alt_m")):
+        if k in t:
+            setattr(mc, attr, row("nav", k, t[k]))
     t = tables.get("fbw", {})
     _check_keys(src, "fbw", t, FBW_KEYS)
-    if "turn_rate_max_deg_s" in t:
-        mc.fbw_turn_rate_max_deg_s = _num(src, "fbw.turn_rate_max_deg_s", t["turn_rate_max_deg_s"],
-                                          1, 360)
-    if "pitch_max" in t:
-        mc.fbw_pitch_max = _num(src, "fbw.pitch_max", t["pitch_max"], 0.01, 4.0)
-    if "deadband_us" in t:
-        mc.fbw_deadband_us = _num(src, "fbw.deadband_us", t["deadband_us"], 0, 90)
+    for k in ("turn_rate_max_deg_s", "pitch_max", "deadband_us"):
+        if k in t:
+            setattr(mc, "fbw_" + k, row("fbw", k, t[k]))
     t = tables.get("aoa", {})
     _check_keys(src, "aoa", t, AOA_KEYS)
     for k, v in t.items():
-        key = f"aoa.{k}"
         if k == "enabled":
-            mc.aoa[k] = 1.0 if _bool(src, key, v) else 0.0
-        elif k in ("v_ref_m_s", "v_enable_m_s"):
-            mc.aoa[k] = _num(src, key, v, 1.0, 327.0)
-        elif k == "load_max":
-            mc.aoa[k] = _num(src, key, v, 1.0, 8.0)
-        elif k.startswith("aoa_"):
-            mc.aoa[k] = _num(src, key, v, -45.0, 45.0)
+            mc.aoa[k] = 1.0 if _bool(src, f"aoa.{k}", v) else 0.0
         else:
-            mc.aoa[k] = _num(src, key, v, -1.0, 1.0)
+            mc.aoa[k] = row("aoa", k, v)
 
 
 def _parse_modes(src: Path, doc: dict[str, Any], ac: Aircraft, duration: float,

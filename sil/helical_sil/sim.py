@@ -337,26 +337,22 @@ def modes_board_config(sc: Scenario) -> dict[str, object]:
     mc = sc.modes
     assert mc is not None
     a = mc.aoa
+    assert mc.cruise_m_s is not None and mc.home_alt_m is not None
     return {
         "modes_enabled": 1, "modes_pitch_mode": 1 if mc.pitch_mode == "tilt_cross" else 0,
-        "nav_law": 1 if mc.law == "l1" else 0, "nav_loop": int(mc.loop),
-        "rc_loss_ticks": mc.rc_loss_ticks, "rc_recover_ticks": mc.rc_recover_ticks,
-        "blend_ticks": mc.blend_ticks,
-        "nav_turn_rate_max_deg_s": mc.nav_turn_rate_max_deg_s, "nav_l1_m": mc.l1_m,
-        "nav_arrival_radius_m": mc.arrival_radius_m, "nav_loiter_radius_m": mc.loiter_radius_m,
-        "nav_home_alt_m": mc.home_alt_m, "cruise_m_s": mc.cruise_m_s,
-        "fbw_turn_rate_max_deg_s": mc.fbw_turn_rate_max_deg_s, "fbw_pitch_max": mc.fbw_pitch_max,
-        "fbw_deadband_us": mc.fbw_deadband_us,
-        "turn_slew_deg_s2": mc.turn_slew_deg_s2, "pitch_slew_per_s": mc.pitch_slew_per_s,
-        "aoa_enabled": int(a.get("enabled", 0.0)),
-        "aoa_v_ref_m_s": a.get("v_ref_m_s", sc.gains["v_ref"]),
-        "aoa_v_enable_m_s": a.get("v_enable_m_s", sc.gains["v_ref"] / 2.0),
-        "aoa_load_max": a.get("load_max", 4.0),
-        **{k: a.get(k, 0.0) for k in (
-            "aoa_normal_deg", "aoa_normal_slope_deg", "aoa_inverted_deg",
-            "aoa_inverted_slope_deg")},
-        **{f"aoa_{k}": a.get(k, 0.0) for k in (
-            "trim_normal", "trim_normal_slope", "trim_inverted", "trim_inverted_slope")},
+        # the table's rows by their names; the rest at the table's defaults
+        "modes": {"rc_loss_ticks": mc.rc_loss_ticks, "rc_recover_ticks": mc.rc_recover_ticks,
+                  "blend_ticks": mc.blend_ticks, "turn_slew_deg_s2": mc.turn_slew_deg_s2,
+                  "pitch_slew_per_s": mc.pitch_slew_per_s, "cruise_m_s": mc.cruise_m_s},
+        "fbw": {"turn_rate_max_deg_s": mc.fbw_turn_rate_max_deg_s,
+                "pitch_max": mc.fbw_pitch_max, "deadband_us": mc.fbw_deadband_us},
+        "nav": {"law": 1 if mc.law == "l1" else 0, "loop": int(mc.loop),
+                "turn_rate_max_deg_s": mc.nav_turn_rate_max_deg_s, "l1_m": mc.l1_m,
+                "arrival_radius_m": mc.arrival_radius_m, "loiter_radius_m": mc.loiter_radius_m,
+                # whole metres (the default is the initial altitude)
+                "home_alt_m": math.copysign(math.floor(abs(mc.home_alt_m) + 0.5), mc.home_alt_m)},
+        # the model's speeds default to the aircraft's v_ref and half of it
+        "aoa": {"v_ref_m_s": sc.gains["v_ref"], "v_enable_m_s": sc.gains["v_ref"] / 2.0, **a},
         "waypoint_count": len(mc.waypoints), "waypoints": list(mc.waypoints),
     }
 

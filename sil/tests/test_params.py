@@ -43,7 +43,9 @@ def test_python_reads_the_table_as_the_compiler_did(board_lib: str) -> None:
     c = compiled_table(board_lib)
     assert len(params.GUIDANCE) >= 5
     assert (len(params.ALT_HOLD), len(params.SPEED_HOLD)) == (11, 7)
-    assert set(c) == {"LAW", "DCM", "GUIDE", "ALT", "SPEED"}
+    assert (len(params.MODES), len(params.FBW), len(params.NAV), len(params.AOA)) == \
+        (7, 5, 9, 12)
+    assert set(c) == {"LAW", "DCM", "GUIDE", "ALT", "SPEED", "MODES", "FBW", "NAV", "AOA"}
     for _key, group, rows in params.BOARD_GROUPS:
         assert [r["name"] for r in c[group]] == [p.name for p in rows]
         for r, p in zip(c[group], rows):
@@ -174,6 +176,30 @@ def test_scenario_errors_quote_the_tables_bounds(tmp_path: Path, extra: str,
     with pytest.raises(ScenarioError) as e:
         load_scenario(_scenario(tmp_path, extra))
     assert message in str(e.value), str(e.value)
+
+
+@pytest.mark.parametrize("table,key,value,message", [
+    ("modes", "blend_ticks", 0,
+     "'modes.blend_ticks' = 0 is outside [1, 10000] (control steps, uint16)"),
+    ("modes", "turn_slew_deg_s2", 90.5,
+     "'modes.turn_slew_deg_s2' = 90.5 is not a whole number (deg/s^2, int16)"),
+    ("nav", "l1_m", 601, "'nav.l1_m' = 601 is outside [5, 600] (m, uint16)"),
+    ("fbw", "pitch_max", 4.5,
+     "'fbw.pitch_max' = 4.5 is outside [1.52588e-05, 4] (pitch ratio, Q16)"),
+    ("aoa", "trim_inverted", -1.5,
+     "'aoa.trim_inverted' = -1.5 is outside [-1, 1] (elevator, Q14)"),
+])
+def test_mode_tables_quote_the_tables_bounds(table: str, key: str, value: float,
+                                             message: str) -> None:
+    """[modes], [nav], [fbw], [aoa] (of a scenario or an aircraft file) take
+    their bounds from the table's rows."""
+    from helical_sil import scenario
+    with pytest.raises(ScenarioError) as e:
+        scenario._parse_mode_tables(Path("a.toml"), {table: {key: value}},
+                                    scenario.ModesConfig())
+    assert message in str(e.value), str(e.value)
+    mc = scenario.ModesConfig()  # and the defaults are the table's
+    assert (mc.rc_loss_ticks, mc.l1_m, mc.fbw_pitch_max) == (20, 60.0, 0.5)
 
 
 def test_the_estimator_config_is_in_table_units(tmp_path: Path) -> None:

@@ -263,7 +263,7 @@ static void test_init_names_each_bad_field(void)
         TEST_ASSERT_TRUE(ht_aoa_param_name(bad)[0] != 0);
         TEST_ASSERT_EQUAL_UINT8(0u, m.ready);
     }
-    TEST_ASSERT_EQUAL_STRING("v_enable_cm_s", ht_aoa_param_name(HT_AOA_P_V_ENABLE));
+    TEST_ASSERT_EQUAL_STRING("v_enable_m_s", ht_aoa_param_name(HT_AOA_P_V_ENABLE));
     TEST_ASSERT_EQUAL_STRING("", ht_aoa_param_name(HT_AOA_P_COUNT));
     ht_aoa_params_t e = prm;
     e.v_enable_cm_s = 188; /* 8 * 188 >= 1500: allowed */

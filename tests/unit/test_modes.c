@@ -580,7 +580,7 @@ static void test_init_names_each_bad_field(void)
             break;
         case HT_MODES_P_CRUISE:
             b.cruise_cm_s = 99;
-            want = "cruise_cm_s";
+            want = "cruise_m_s";
             break;
         case HT_MODES_P_RATE_HZ:
             b.rate_hz = 0u;
