@@ -208,95 +208,25 @@ static int table_value(double v, const ht_param_info_t *info, const char *prefix
 #define SIL_SET_AOA(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
     SIL_SET(HT_AOA_P_, id, field, fmt)
 
-static void set_law(void *dst, int id, int64_t raw)
-{
-    ht_params_t *p = dst;
-    switch ((ht_param_id_t)id) {
-        HT_PARAMS_LAW(SIL_SET_LAW)
-    default:
-        break;
+/* A group's setter: the stored value of row id into its field of *dst. */
+#define SIL_SETTER(fn, type, list, row)                                                            \
+    static void fn(void *dst, int id, int64_t raw)                                                 \
+    {                                                                                              \
+        type *p = dst;                                                                             \
+        switch (id) {                                                                              \
+            list(row) default : break;                                                             \
+        }                                                                                          \
     }
-}
 
-static void set_dcm(void *dst, int id, int64_t raw)
-{
-    ht_dcm_params_t *p = dst;
-    switch ((ht_dcm_param_id_t)id) {
-        HT_PARAMS_DCM(SIL_SET_DCM)
-    default:
-        break;
-    }
-}
-
-static void set_guide(void *dst, int id, int64_t raw)
-{
-    ht_guide_params_t *p = dst;
-    switch ((ht_guide_param_id_t)id) {
-        HT_PARAMS_GUIDE(SIL_SET_GUIDE)
-    default:
-        break;
-    }
-}
-
-static void set_alt(void *dst, int id, int64_t raw)
-{
-    ht_alt_hold_params_t *p = dst;
-    switch ((ht_alt_param_id_t)id) {
-        HT_PARAMS_ALT(SIL_SET_ALT)
-    default:
-        break;
-    }
-}
-
-static void set_speed(void *dst, int id, int64_t raw)
-{
-    ht_speed_hold_params_t *p = dst;
-    switch ((ht_speed_param_id_t)id) {
-        HT_PARAMS_SPEED(SIL_SET_SPEED)
-    default:
-        break;
-    }
-}
-
-static void set_modes(void *dst, int id, int64_t raw)
-{
-    ht_modes_params_t *p = dst;
-    switch ((ht_modes_param_id_t)id) {
-        HT_PARAMS_MODES(SIL_SET_MODES)
-    default:
-        break;
-    }
-}
-
-static void set_fbw(void *dst, int id, int64_t raw)
-{
-    ht_fbw_params_t *p = dst;
-    switch ((ht_fbw_param_id_t)id) {
-        HT_PARAMS_FBW(SIL_SET_FBW)
-    default:
-        break;
-    }
-}
-
-static void set_nav(void *dst, int id, int64_t raw)
-{
-    ht_nav_params_t *p = dst;
-    switch ((ht_nav_param_id_t)id) {
-        HT_PARAMS_NAV(SIL_SET_NAV)
-    default:
-        break;
-    }
-}
-
-static void set_aoa(void *dst, int id, int64_t raw)
-{
-    ht_aoa_params_t *p = dst;
-    switch ((ht_aoa_param_id_t)id) {
-        HT_PARAMS_AOA(SIL_SET_AOA)
-    default:
-        break;
-    }
-}
+SIL_SETTER(set_law, ht_params_t, HT_PARAMS_LAW, SIL_SET_LAW)
+SIL_SETTER(set_dcm, ht_dcm_params_t, HT_PARAMS_DCM, SIL_SET_DCM)
+SIL_SETTER(set_guide, ht_guide_params_t, HT_PARAMS_GUIDE, SIL_SET_GUIDE)
+SIL_SETTER(set_alt, ht_alt_hold_params_t, HT_PARAMS_ALT, SIL_SET_ALT)
+SIL_SETTER(set_speed, ht_speed_hold_params_t, HT_PARAMS_SPEED, SIL_SET_SPEED)
+SIL_SETTER(set_modes, ht_modes_params_t, HT_PARAMS_MODES, SIL_SET_MODES)
+SIL_SETTER(set_fbw, ht_fbw_params_t, HT_PARAMS_FBW, SIL_SET_FBW)
+SIL_SETTER(set_nav, ht_nav_params_t, HT_PARAMS_NAV, SIL_SET_NAV)
+SIL_SETTER(set_aoa, ht_aoa_params_t, HT_PARAMS_AOA, SIL_SET_AOA)
 
 const ht_param_info_t *sil_param_info(int group, int index)
 {

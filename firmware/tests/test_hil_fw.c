@@ -97,22 +97,29 @@ static int32_t q16(double v)
     return (int32_t)llround(v * 65536.0);
 }
 
+/* One group of the parameter table at its defaults, in the table's units. */
+static void table_defaults(double *dst, int group)
+{
+    for (int i = 0; i < sil_param_count(group); ++i) {
+        const ht_param_info_t *info = sil_param_info(group, i);
+        dst[i] = (double)info->default_raw / (double)info->scale;
+    }
+}
+
 static sil_config_t config(void)
 {
     sil_config_t c;
     memset(&c, 0, sizeof c);
-    for (int i = 1; i < (int)HT_P_COUNT; ++i) { /* the table's defaults first */
-        const ht_param_info_t *info = ht_param_info((ht_param_id_t)i);
-        c.law[i - 1] = (double)info->default_raw / (double)info->scale;
-    }
-    for (int i = 1; i < (int)HT_DCM_P_COUNT; ++i) {
-        const ht_param_info_t *info = ht_dcm_param_info((ht_dcm_param_id_t)i);
-        c.estimator[i - 1] = (double)info->default_raw / (double)info->scale;
-    }
-    for (int i = 1; i < (int)HT_GUIDE_P_COUNT; ++i) {
-        const ht_param_info_t *info = ht_guide_param_info((ht_guide_param_id_t)i);
-        c.guidance[i - 1] = (double)info->default_raw / (double)info->scale;
-    }
+    /* the table's defaults first */
+    table_defaults(c.law, SIL_GROUP_LAW);
+    table_defaults(c.estimator, SIL_GROUP_ESTIMATOR);
+    table_defaults(c.guidance, SIL_GROUP_GUIDANCE);
+    table_defaults(c.alt_hold, SIL_GROUP_ALT_HOLD);
+    table_defaults(c.speed_hold, SIL_GROUP_SPEED_HOLD);
+    table_defaults(c.modes, SIL_GROUP_MODES);
+    table_defaults(c.fbw, SIL_GROUP_FBW);
+    table_defaults(c.nav, SIL_GROUP_NAV);
+    table_defaults(c.aoa, SIL_GROUP_AOA);
     c.law[HT_P_KP_AILERON - 1] = 2.0;
     c.law[HT_P_KP_ELEVATOR - 1] = 6.0;
     c.law[HT_P_KP_RUDDER - 1] = 0.3;
@@ -125,14 +132,6 @@ static sil_config_t config(void)
     c.law[HT_P_V_MIN - 1] = 30.0;
     c.law[HT_P_MAX_TILT - 1] = 2.0;
     c.law[HT_P_SCHEDULE - 1] = 1.0;
-    for (int i = 1; i < (int)HT_ALT_P_COUNT; ++i) {
-        const ht_param_info_t *info = ht_alt_hold_param_info((ht_alt_param_id_t)i);
-        c.alt_hold[i - 1] = (double)info->default_raw / (double)info->scale;
-    }
-    for (int i = 1; i < (int)HT_SPEED_P_COUNT; ++i) {
-        const ht_param_info_t *info = ht_speed_hold_param_info((ht_speed_param_id_t)i);
-        c.speed_hold[i - 1] = (double)info->default_raw / (double)info->scale;
-    }
     c.alt_hold[HT_ALT_P_KP - 1] = 0.012;
     c.alt_hold[HT_ALT_P_KI - 1] = 0.004;
     c.alt_hold[HT_ALT_P_KD - 1] = 0.015;
