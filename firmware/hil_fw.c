@@ -151,14 +151,16 @@ void hil_cfg_law_parse(const uint8_t *p, ht_params_t *s)
 }
 
 /* The guidance's rows, in CFG_EST after the timing (ROW_* read s). */
-static unsigned guide_put(uint8_t *p, unsigned off, const ht_guide_params_t *s)
+static unsigned guide_put(uint8_t *p, unsigned start, const ht_guide_params_t *s)
 {
+    unsigned off = start;
     HT_PARAMS_GUIDE(ROW_PUT)
     return off;
 }
 
-static unsigned guide_get(const uint8_t *p, unsigned off, ht_guide_params_t *s)
+static unsigned guide_get(const uint8_t *p, unsigned start, ht_guide_params_t *s)
 {
+    unsigned off = start;
     HT_PARAMS_GUIDE(ROW_GET)
     return off;
 }

@@ -74,8 +74,11 @@ void ht_modes_params_default(ht_modes_params_t *p)
         return;
     }
     ht_modes_params_t d = {0}; /* fields the holds may add later start at 0 */
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
     const ht_fbw_params_t fbw = HT_FBW_PARAMS_DEFAULT;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
     const ht_nav_params_t nav = HT_NAV_PARAMS_DEFAULT;
+    // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
     const ht_aoa_params_t aoa = HT_AOA_PARAMS_DEFAULT;
     const os_rc_cal_t stick = {0u, 0u, 0u, 1500u, 500u};
     d.rc.aileron = stick;

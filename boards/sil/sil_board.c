@@ -186,6 +186,7 @@ static int table_value(double v, const ht_param_info_t *info, const char *prefix
 
 /* One setter per group of the table: the stored value of row id into its
  * field (the value is already within the row's bounds, so it fits). */
+// cppcheck-suppress misra-c2012-20.7 ; D-PARAM-TABLE: field is a member name, not an expression
 #define SIL_SET(prefix, id, field, fmt)                                                            \
     case prefix##id:                                                                               \
         p->field = (HT_PFMT_TYPE_##fmt)raw;                                                        \
@@ -208,11 +209,14 @@ static int table_value(double v, const ht_param_info_t *info, const char *prefix
 #define SIL_SET_AOA(id, name, field, unit, fmt, lo, hi, def, desc)                                 \
     SIL_SET(HT_AOA_P_, id, field, fmt)
 
-/* A group's setter: the stored value of row id into its field of *dst. */
+/* A group's setter: the stored value of row id into its field of *dst. The
+ * arguments are a function name, a type, a list and its row expander: none
+ * is an expression to parenthesize (D-PARAM-TABLE). */
+// cppcheck-suppress misra-c2012-20.7 ; D-PARAM-TABLE: names and a type, not expressions
 #define SIL_SETTER(fn, type, list, row)                                                            \
     static void fn(void *dst, int id, int64_t raw)                                                 \
     {                                                                                              \
-        type *p = dst;                                                                             \
+        type *p = dst; /* NOLINT(bugprone-macro-parentheses): a type */                            \
         switch (id) {                                                                              \
             list(row) default : break;                                                             \
         }                                                                                          \

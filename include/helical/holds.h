@@ -85,9 +85,9 @@ typedef struct {
 #define HT_PARAM_X_ALT_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_ALT_P_##id,
 typedef enum {
     HT_ALT_P_NONE = 0,
-    HT_PARAMS_ALT(HT_PARAM_X_ALT_ID) HT_ALT_P_COUNT,
-    HT_ALT_P_RATE_HZ = HT_ALT_P_COUNT
+    HT_PARAMS_ALT(HT_PARAM_X_ALT_ID) HT_ALT_P_COUNT
 } ht_alt_param_id_t;
+#define HT_ALT_P_RATE_HZ HT_ALT_P_COUNT /* not a row: the step rate */
 
 /* The table's defaults, at the step rate rate_hz. */
 void ht_alt_hold_params_default(ht_alt_hold_params_t *p, uint16_t rate_hz);
@@ -157,9 +157,9 @@ typedef struct {
 #define HT_PARAM_X_SPEED_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_SPEED_P_##id,
 typedef enum {
     HT_SPEED_P_NONE = 0,
-    HT_PARAMS_SPEED(HT_PARAM_X_SPEED_ID) HT_SPEED_P_COUNT,
-    HT_SPEED_P_RATE_HZ = HT_SPEED_P_COUNT
+    HT_PARAMS_SPEED(HT_PARAM_X_SPEED_ID) HT_SPEED_P_COUNT
 } ht_speed_param_id_t;
+#define HT_SPEED_P_RATE_HZ HT_SPEED_P_COUNT /* not a row: the step rate */
 
 void ht_speed_hold_params_default(ht_speed_hold_params_t *p, uint16_t rate_hz);
 const char *ht_speed_hold_param_name(ht_speed_param_id_t id);
