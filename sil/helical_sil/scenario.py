@@ -459,10 +459,23 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
     doc = _load_toml(p)
     _check_keys(p, "", doc, ("model", "description", "gains", "initial", "modes", "nav", "fbw",
                              "aoa"))
-    model = _str(p, "model", doc.get("model", name))
+    # no silent defaults for what makes an airframe: the JSBSim model and the
+    # speed the gains are tuned at (the library's v_ref of 15 m/s would fly a
+    # 50 m/s aircraft on gains scaled for a model plane)
+    for key, why in (("model", "the JSBSim model to fly, e.g. model = \"c172p\""),
+                     ("gains", "the [gains] table, with at least v_ref (the airspeed the gains "
+                               "are tuned at)")):
+        if key not in doc:
+            raise ScenarioError(f"{_where(p, key)}: missing (required): {why}")
+    model = _str(p, "model", doc["model"])
     desc = _str(p, "description", doc.get("description", ""))
     gains = dict(GAIN_DEFAULTS)
-    own = _gains(p, "gains", _table(p, "gains", doc.get("gains", {})))
+    gtable = _table(p, "gains", doc["gains"])
+    if "v_ref" not in gtable:
+        row = params.LAW_BY_NAME["v_ref"]
+        raise ScenarioError(f"{_where(p, 'gains.v_ref')}: missing (required): the airspeed the "
+                            f"gains are tuned at, {row.bounds_text()}")
+    own = _gains(p, "gains", gtable)
     gains.update(own)
     sources = {k: p for k in own}
     _check_gain_order(p, gains, sources)  # an aircraft file flies on its own

@@ -113,3 +113,28 @@ def test_not_toml_and_missing_file(tmp_path: Path) -> None:
         load_scenario(_write(tmp_path, "aircraft = \n"))
     with pytest.raises(ScenarioError, match="no such file"):
         load_scenario(tmp_path / "nope.toml")
+
+
+@pytest.mark.parametrize("aircraft,message", [
+    ('description = "no model"\n[gains]\nv_ref = 30\n',
+     "'model': missing (required): the JSBSim model to fly"),
+    ('model = "c172p"\n', "'gains': missing (required): the [gains] table"),
+    ('model = "c172p"\n[gains]\nkp_aileron = 2\n',
+     "'gains.v_ref': missing (required): the airspeed the gains are tuned at, [1, 327.67] "
+     "(m/s, int32 x100)"),
+    ('model = "c172p"\n[gains]\nv_ref = 30\nv_min = 40\n',
+     "'gains.v_min' = 40 (this file) must not exceed 'gains.v_ref' = 30 (this file)"),
+    ('model = "c172p"\n[gains]\nv_ref = 30\nalt_kp = 65\n',
+     "'gains.alt_kp' = 65 is outside [0, 64] (pitch ratio per m, Q16)"),
+])
+def test_aircraft_files_have_no_silent_defaults(tmp_path: Path, aircraft: str,
+                                                message: str) -> None:
+    """model, [gains] and gains.v_ref are required; every bound is the table's;
+    an order between two keys names both and the file."""
+    (tmp_path / "aircraft").mkdir()
+    (tmp_path / "aircraft" / "mine.toml").write_text(aircraft)
+    text = GOOD.replace('aircraft = "c172p"', 'aircraft = "mine"')
+    with pytest.raises(ScenarioError) as e:
+        load_scenario(_write(tmp_path, text))
+    assert message in str(e.value), str(e.value)
+    assert "mine.toml" in str(e.value)
