@@ -197,6 +197,8 @@ def cmd_run(args: argparse.Namespace) -> int:
                                     f"max {c['max']}" if c["max"] is not None else "") if x)
         val = "n/a" if c["value"] is None else f"{c['value']:.3f}"
         print(f"  {'ok  ' if c['ok'] else 'FAIL'} {c['segment']}.{c['metric']} = {val} ({lim})")
+        if c.get("reason"):
+            print(f"       {c['reason']}")
     print(f"wrote {Path(args.out).resolve()} (metrics.json, telemetry.csv"
           f"{', plots' if not args.no_plots else ''})")
     return 0 if m["passed"] else 1

@@ -442,6 +442,9 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
     if sc.modes is not None:
         run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
         run.update(failsafe_metrics(res))
+    if res.end_reason is not None:
+        run["end_reason"] = res.end_reason
+        run["ground_contact_s"] = res.end_t_s
     return {"scenario": sc.name, "aircraft": sc.aircraft.name, "seed": sc.seed,
             "control_rate_hz": sc.control_rate_hz, "sim_rate_hz": sc.sim_rate_hz,
             "trims": res.trims, "run": run, "segments": segs}
@@ -462,4 +465,9 @@ def evaluate(metrics: dict[str, Any], criteria: list[PassCriterion]) -> list[dic
             ok = False
         out.append({"segment": c.segment, "metric": c.metric, "value": val, "max": c.max,
                     "min": c.min, "ok": ok})
+    if metrics["run"].get("end_reason") is not None:
+        # a run that ended on the ground fails, with the reason
+        out.append({"segment": "run", "metric": "ground_contact_s",
+                    "value": metrics["run"]["ground_contact_s"], "max": None, "min": None,
+                    "ok": False, "reason": metrics["run"]["end_reason"]})
     return out

@@ -94,6 +94,9 @@ class RunResult:
     segments: list[Segment]
     wall_s: float
     trims: dict[str, float] = field(default_factory=dict)
+    # why the run ended before its duration (ground contact), else None
+    end_reason: str | None = None
+    end_t_s: float | None = None
 
 
 @contextlib.contextmanager
@@ -114,6 +117,11 @@ def _quiet_stdout() -> Iterator[None]:
             sys.stdout.flush()
             os.dup2(saved, fd)
             os.close(saved)
+
+
+# Below this height above the ground (JSBSim's position/h-agl-ft) a run has hit
+# the ground: the gear or the belly is on the terrain.
+GROUND_CONTACT_M = 1.0
 
 
 class SimError(RuntimeError):
@@ -440,6 +448,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     cmd_ptr = 0
     alt_target = sc.altitude_m
     was_hold = True
+    end_reason: str | None = None
+    end_t: float | None = None
     t_wall = time.perf_counter()
     for k in range(steps):
         t = k * dt_ctl
@@ -578,12 +588,19 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             imu_batch.append(model.imu(sensors_mod.read_fdm_state(fdm), t + (j + 1) * dt_sim))
         north += vn * dt_ctl
         east += ve * dt_ctl
-        if h < 5.0:
+        agl = fdm["position/h-agl-ft"] * FT
+        if agl < GROUND_CONTACT_M:
+            # the aircraft hit the ground: the run stops here and fails
+            # (metrics.evaluate), whatever its criteria say
+            end_t = (k + 1) * dt_ctl
+            end_reason = (f"ground contact at t = {end_t:.2f} s: {agl:.1f} m above the ground, "
+                          f"sinking at {-fdm['velocities/h-dot-fps'] * FT:.1f} m/s, "
+                          f"{fdm['velocities/vt-fps'] * FT:.1f} m/s true airspeed")
             log = log[: k + 1]
             break
     wall = time.perf_counter() - t_wall
     tel = {name: log[:, i].copy() for i, name in enumerate(COLUMNS)}
-    return RunResult(sc, tel, segs, wall, trims)
+    return RunResult(sc, tel, segs, wall, trims, end_reason, end_t)
 
 
 def _angle_deg(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:

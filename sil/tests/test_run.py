@@ -194,3 +194,43 @@ def test_untrimmed_start_flies(tmp_path: Path, board_lib: str) -> None:
     res = sim.run(load_scenario(p), board_lib)
     assert res.trims["throttle"] >= 0.0
     assert len(res.telemetry["t_s"]) == 12 * 40
+
+
+DIVE = """
+aircraft = "c172p"
+duration_s = 60
+[initial]
+altitude_m = 150
+[[command]]
+t_s = 0
+label = "dive"
+pitch = -0.4
+[[pass]]
+segment = "run"
+metric = "max_altitude_loss_m"
+max = 100000
+"""
+
+
+def test_a_run_that_hits_the_ground_stops_and_fails_with_the_reason(tmp_path: Path,
+                                                                   board_lib: str) -> None:
+    """A -22 deg dive from 150 m reaches the ground in a few seconds: the run
+    stops there (not 60 s of flight through the terrain), and fails although
+    its one criterion alone would pass."""
+    p = tmp_path / "dive.toml"
+    p.write_text(DIVE)
+    out = tmp_path / "o"
+    rc = main(["--board-lib", board_lib, "run", str(p), "--no-plots", "--out", str(out)])
+    m = json.loads((out / "metrics.json").read_text())
+    assert rc == 1 and m["passed"] is False
+    reason = m["run"]["end_reason"]
+    assert reason.startswith("ground contact at t = ") and "above the ground" in reason
+    t_hit = m["run"]["ground_contact_s"]
+    assert 3.0 < t_hit < 30.0
+    checks = {c["metric"]: c for c in m["pass_criteria"]}
+    assert checks["max_altitude_loss_m"]["ok"] is True
+    assert checks["ground_contact_s"]["ok"] is False
+    assert checks["ground_contact_s"]["reason"] == reason
+    # the telemetry ends at the contact
+    rows = (out / "telemetry.csv").read_text().splitlines()
+    assert len(rows) - 1 == round(t_hit * 40)
