@@ -460,6 +460,53 @@ def _add_upsets_parser(sub: Any) -> None:
 # --- end fault campaign ---
 
 
+def cmd_aircraft_list(args: argparse.Namespace) -> int:
+    from helical_sil import aircraft as acm
+    if args.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    t0 = time.perf_counter()
+    models = acm.list_models(args.altitude_m, include_all=args.all, jobs=args.jobs,
+                             progress=lambda i, n, name: _progress(i, n, name, t0))
+    rows = [[m.name, "yes" if m.fixed_wing else "no", str(m.engines),
+             "yes" if m.trims else ("-" if not m.fixed_wing else "no"),
+             ", ".join(f"{v:g}" for v in m.trims_at), acm.explain(m)] for m in models]
+    print(markdown_table(["model", "fixed-wing with engine", "engines", "trims",
+                          f"trims at (m/s, {args.altitude_m:g} m)", "note"], rows))
+    n_fw = sum(m.fixed_wing for m in models)
+    n_trim = sum(m.trims for m in models)
+    print(f"{n_fw} fixed-wing models with an engine, {n_trim} of them trim at a speed of "
+          f"{', '.join(f'{v:g}' for v in acm.TRIM_SPEEDS_M_S)} m/s")
+    if args.json:
+        Path(args.json).write_text(json.dumps(
+            [{"model": m.name, "fixed_wing": m.fixed_wing, "why_not": m.why_not,
+              "engines": m.engines, "wing_area_m2": m.wing_area_m2, "trims_at_m_s": m.trims_at,
+              "trim_error": m.trim_error} for m in models], indent=1) + "\n")
+    return 0
+
+
+def _add_aircraft_parser(sub: Any) -> None:
+    from helical_sil import aircraft as acm
+    a = sub.add_parser("aircraft", **_HELP, help="the JSBSim models that can be flown",
+                       description="The aircraft of the installed JSBSim wheel.")
+    asub = a.add_subparsers(dest="aircraft_cmd", required=True)
+    lst = asub.add_parser(
+        "list", **_HELP, help="list the flyable models and whether each trims",
+        description="Every model of JSBSim's aircraft folder that is fixed-wing with an "
+                    "engine (not a glider, rotorcraft, airship, balloon, bomb or launch "
+                    "vehicle), each trimmed straight and level by JSBSim at "
+                    f"{', '.join(f'{v:g}' for v in acm.TRIM_SPEEDS_M_S)} m/s: the speeds "
+                    "that trim, or JSBSim's own reason and what to do. Takes a few minutes "
+                    "(a progress bar on stderr).")
+    lst.add_argument("--altitude-m", type=float, default=acm.DEFAULT_ALTITUDE_M,
+                     help=f"trim altitude above sea level (default {acm.DEFAULT_ALTITUDE_M:g})")
+    lst.add_argument("--all", action="store_true",
+                     help="also list the models that are not flown, with the reason")
+    lst.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                     help="parallel processes (default: the CPU count)")
+    lst.add_argument("--json", default=None, help="also write the table as JSON to this file")
+    lst.set_defaults(func=cmd_aircraft_list)
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="python -m helical_sil", **_HELP,
@@ -520,6 +567,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--metrics", nargs="*", help="metric names (default: a standard set)")
     c.set_defaults(func=cmd_compare)
     _add_upsets_parser(sub)  # fault campaign (issue 7)
+    _add_aircraft_parser(sub)
     return ap
 
 
