@@ -113,13 +113,28 @@ def _quiet() -> Iterator[None]:
             os.close(fd)
 
 
+@contextlib.contextmanager
+def _scratch_cwd() -> Iterator[None]:
+    """Some models carry <output> directives, and JSBSim opens their CSV files
+    in the working directory at run_ic (disable_output does not stop it): run
+    the model in a temporary directory, removed afterwards."""
+    import tempfile
+    here = os.getcwd()
+    with tempfile.TemporaryDirectory(prefix="ht_aircraft_") as tmp:
+        os.chdir(tmp)
+        try:
+            yield
+        finally:
+            os.chdir(here)
+
+
 def trim_sweep(info: ModelInfo, altitude_m: float = DEFAULT_ALTITUDE_M,
                speeds: tuple[float, ...] = TRIM_SPEEDS_M_S) -> None:
     """Trim the model straight and level at each speed; fills trims_at and
     trim_error (JSBSim's message at the first speed that failed)."""
     import jsbsim
     for v in speeds:
-        with _quiet():
+        with _quiet(), _scratch_cwd():
             try:
                 fdm = jsbsim.FGFDMExec(None)
                 fdm.set_debug_level(0)

@@ -38,3 +38,13 @@ def test_aircraft_list_help() -> None:
         main(["aircraft", "list", "--help"])
     assert e.value.code == 0
     assert main(["aircraft", "list", "--jobs", "0"]) == 2
+
+
+def test_a_model_with_output_directives_writes_nothing_here(tmp_path, monkeypatch) -> None:
+    """global5000 logs to global5000.csv in the working directory at run_ic:
+    the sweep runs it in a scratch directory."""
+    monkeypatch.chdir(tmp_path)
+    g = _by_name()["global5000"]
+    acm.trim_sweep(g, speeds=(100.0,))
+    assert g.trims_at == [100.0]
+    assert list(tmp_path.iterdir()) == []
