@@ -405,7 +405,15 @@ typedef struct {
     int32_t xn_q28;
 } qi_rsqrt_t;
 
-static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
+/* The normalization and the table's first guess that both 1/sqrt forms start
+ * from: x_n = x * 2^(2 * exp2) in [2^28, 2^30) and y0 (Q15) within 6.2e-5. */
+typedef struct {
+    int32_t y0_q15;
+    int exp2;
+    uint32_t xn_q28;
+} qi_rsqrt_seed_t;
+
+static QI_ALWAYS_INLINE qi_rsqrt_seed_t qi_rsqrt_seed(uint32_t x)
 {
     const uint32_t xs = (x != 0u) ? x : 1u;
     const unsigned lz = qi_clz32(xs);
@@ -417,9 +425,9 @@ static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
     } else {
         xn = xs >> 2;
     }
-    qi_rsqrt_t r;
-    r.exp2 = ((int)even / 2) - 1;
-    r.xn_q28 = (int32_t)xn;
+    qi_rsqrt_seed_t s;
+    s.exp2 = ((int)even / 2) - 1;
+    s.xn_q28 = xn;
     uint32_t idx;
     uint32_t frac_q15;
     /* the masks keep the index inside the table by construction */
@@ -433,10 +441,20 @@ static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
     const int32_t t0 = (int32_t)q_rsqrt_table_q15[idx];
     const int32_t t1 = (int32_t)q_rsqrt_table_q15[idx + 1u];
     // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
-    const int32_t y0 = t0 + ((((t1 - t0) * (int32_t)frac_q15) + 16384) >> 15); /* Q15 */
-    const uint32_t y0sq_q30 = (uint32_t)y0 * (uint32_t)y0;                     /* <= 2^30 */
+    s.y0_q15 = t0 + ((((t1 - t0) * (int32_t)frac_q15) + 16384) >> 15);
+    return s;
+}
+
+static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
+{
+    const qi_rsqrt_seed_t s = qi_rsqrt_seed(x);
+    qi_rsqrt_t r;
+    r.exp2 = s.exp2;
+    r.xn_q28 = (int32_t)s.xn_q28;
+    const int32_t y0 = s.y0_q15;
+    const uint32_t y0sq_q30 = (uint32_t)y0 * (uint32_t)y0; /* <= 2^30 */
     /* x * y0^2 ~ 1: Q28 * Q30 -> Q28 */
-    const int32_t xy2_q28 = qi_mul32_fit((int32_t)xn, (int32_t)y0sq_q30, 30u);
+    const int32_t xy2_q28 = qi_mul32_fit(r.xn_q28, (int32_t)y0sq_q30, 30u);
     const int32_t resid_q28 = (int32_t)0x10000000 - xy2_q28; /* |.| < 2^15 */
     /* y0 * resid / 2: Q15 * Q28 -> Q28 needs >> 15, the halving one more */
     // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
@@ -444,6 +462,130 @@ static QI_ALWAYS_INLINE qi_rsqrt_t qi_rsqrt_norm_q28(uint32_t x)
     r.y_q28 = (y0 * 8192) + corr_q28;
     return r;
 }
+
+/*
+ * The same 1/sqrt to 1.5e-9 relative, for the control law (whose target
+ * tilt, times a unit row of up to 2 and a gain of 2048, must be exact to a few
+ * 2^-28): y in Q30, 2^29 <= y <= 2^30, 1/sqrt(x * 2^-28) = y * 2^exp2 * 2^-30.
+ * With r = 1 - x*y0^2 (|r| < 1.3e-4, the table's error), the exact root is
+ * y0 / sqrt(1 - r) = y0 * (1 + r/2 + 3r^2/8 + ...): the second-order step
+ * leaves 5r^3/16 (1e-12) and its roundings (r in Q30, from every bit of x;
+ * r/2 + 3r^2/8 in Q31; the product in Q30): below 1.5e-9 relative
+ * (test_ht_arith). Int32 only: r^2 from r / 4 (a 16x16 product), and y0 * t
+ * split at bit 16.
+ */
+typedef struct {
+    int32_t y_q30;
+    int exp2;
+    int32_t xn_q28;
+} qi_rsqrt30_t;
+
+static inline qi_rsqrt30_t qi_rsqrt_norm_q30(uint32_t x)
+{
+    const qi_rsqrt_seed_t s = qi_rsqrt_seed(x);
+    qi_rsqrt30_t r;
+    r.exp2 = s.exp2;
+    r.xn_q28 = (int32_t)s.xn_q28;
+    const int32_t y0 = s.y0_q15;                           /* [2^14, 2^15] */
+    const uint32_t y0sq_q30 = (uint32_t)y0 * (uint32_t)y0; /* <= 2^30 */
+    /* x * y0^2 ~ 1: Q28 * Q30 -> Q30, below 2^30 * (1 + 1.3e-4); for x >= 2^30
+     * the two bits the normalization dropped are added back (below 3 in Q30) */
+    int32_t xy2_q30 = qi_mul32_fit(r.xn_q28, (int32_t)y0sq_q30, 28u);
+    if (s.exp2 < 0) {
+        xy2_q30 += (int32_t)((((x & 3u) * y0sq_q30) + 0x20000000u) >> 30);
+    }
+    const int32_t resid_q30 = (int32_t)0x40000000 - xy2_q30; /* r, |.| < 2^17.1 */
+    /* 3r^2/8 in Q31 = 3 * resid^2 / 2^32 = 3 * (resid / 4)^2 / 2^28 (at most 12) */
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t quarter = resid_q30 >> 2; /* |.| < 2^15.1: the square is below 2^30.2 */
+    const int32_t quarter_sq_s = quarter * quarter;
+    const uint32_t quarter_sq = (uint32_t)quarter_sq_s;
+    const uint32_t r2_term = ((3u * quarter_sq) + 0x08000000u) >> 28;
+    const int32_t t_q31 = resid_q30 + (int32_t)r2_term; /* r/2 + 3r^2/8 */
+    /* y0 * t / 2^16, rounded once: t = th * 2^16 + tl, 0 <= tl < 2^16 */
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    const int32_t th = t_q31 >> 16;
+    const uint32_t tl = (uint32_t)t_q31 & 0xFFFFu;
+    const uint32_t low = (((uint32_t)y0 * tl) + 0x8000u) >> 16; /* y0 * tl < 2^31 */
+    r.y_q30 = (y0 * 32768) + (y0 * th) + (int32_t)low;
+    return r;
+}
+
+/*
+ * round((a0*b0 + a1*b1 + a2*b2) / 2^shift), ties toward +inf, saturated to
+ * int32, shift in [1, 62]: the three products summed exactly before the one
+ * rounding (the control law's surface demand). The caller shows that the
+ * exact sum is below 2^62 in magnitude. The portable form adds the three
+ * 64-bit two's-complement products as 32-bit halves (int32 only, what the
+ * dsPIC and the Cortex-M0 run); a core with a 32x32->64 multiplier uses it.
+ */
+static inline u64pair_t smul64_pair(int32_t a, int32_t b)
+{
+    const uint32_t ua = (uint32_t)a, ub = (uint32_t)b;
+    u64pair_t p = umul32(ua, ub);
+    p.hi -= (a < 0) ? ub : 0u;
+    p.hi -= (b < 0) ? ua : 0u;
+    return p;
+}
+
+static inline int32_t qi_dot3_portable(int32_t a0, int32_t b0, int32_t a1, int32_t b1, int32_t a2,
+                                       int32_t b2, unsigned shift)
+{
+    const unsigned sh = (shift < 1u) ? 1u : shift; /* 0 is read as 1: never an undefined shift */
+    u64pair_t acc = smul64_pair(a0, b0);
+    const u64pair_t p1 = smul64_pair(a1, b1);
+    acc = u64_add(acc, p1.hi, p1.lo);
+    const u64pair_t p2 = smul64_pair(a2, b2);
+    acc = u64_add(acc, p2.hi, p2.lo);
+    const u64pair_t half = u64_pow2(sh - 1u);
+    acc = u64_add(acc, half.hi, half.lo);
+    const int32_t shi = (int32_t)acc.hi; /* the conversion keeps the bits (gcc, clang, XC16) */
+    int32_t hi;
+    int32_t lo;
+    if (sh < 32u) {
+        const uint32_t lo_u = (acc.lo >> sh) | (acc.hi << (32u - sh));
+        lo = (int32_t)lo_u;
+        // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
+        hi = shi >> sh;
+    } else {
+        // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+        lo = shi >> (sh - 32u);
+        // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
+        hi = shi >> 31;
+    }
+    /* it fits iff the high half is the sign extension of the low half */
+    // cppcheck-suppress [misra-c2012-10.1, shiftTooManyBitsSigned] ; arithmetic >> by design
+    if (hi != (lo >> 31)) {
+        return (hi < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return lo;
+}
+
+#if Q_TARGET_HAS_MUL64
+static inline int32_t qi_dot3(int32_t a0, int32_t b0, int32_t a1, int32_t b1, int32_t a2,
+                              int32_t b2, unsigned shift)
+{
+    const unsigned half_shift = shift - 1u;
+    const uint64_t half = (uint64_t)1u << half_shift;
+    int64_t p = ((int64_t)a0 * (int64_t)b0) + ((int64_t)a1 * (int64_t)b1) +
+                ((int64_t)a2 * (int64_t)b2) + (int64_t)half;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    p >>= shift;
+    if (p > INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (p < INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)p;
+}
+#else
+static inline int32_t qi_dot3(int32_t a0, int32_t b0, int32_t a1, int32_t b1, int32_t a2,
+                              int32_t b2, unsigned shift)
+{
+    return qi_dot3_portable(a0, b0, a1, b1, a2, b2, shift);
+}
+#endif
 
 /* a / b rounded to nearest, ties away from zero, for b in [1, 2^30) (the
  * remainder test cannot overflow): the holds' integrators and the turn-rate

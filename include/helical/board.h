@@ -92,8 +92,8 @@ typedef struct {
 } board_gps_t;
 
 typedef struct {
-    uint8_t imu_fresh;    /* a new IMU sample */
-    ht_imu_sample_t imu;  /* gyro Q16 rad/s, specific force Q16 g (level: 0, 0, -1) */
+    uint8_t imu_fresh;   /* a new IMU sample */
+    ht_imu_sample_t imu; /* gyro Q16 rad/s, specific force Q16 g (level: 0, 0, -1) */
     board_gps_t gps;
     uint8_t airspeed_fresh; /* a live pitot reading */
     int16_t airspeed_cm_s;

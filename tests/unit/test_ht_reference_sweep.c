@@ -189,8 +189,12 @@ static void extreme_stats_init(extreme_stats_t *st)
     st->unsaturated[0] = st->unsaturated[1] = st->unsaturated[2] = 0;
 }
 
-/* Accumulate the worst errors of `steps` balanced steps of one parameter set. */
-static void sweep_extreme(const ht_params_t *params, uint64_t seed, long steps, extreme_stats_t *st)
+/* Accumulate the worst errors of `steps` balanced steps of one parameter set;
+ * with any_row, the tilt row is drawn over the whole int16 range (an
+ * unnormalized row up to 2 per element doubles every tilt error, the case
+ * fuzz_ht_step found). */
+static void sweep_extreme_rows(const ht_params_t *params, uint64_t seed, long steps, int any_row,
+                               extreme_stats_t *st)
 {
     ht_controller_t ctl;
     ht_param_id_t bad;
@@ -201,6 +205,11 @@ static void sweep_extreme(const ht_params_t *params, uint64_t seed, long steps, 
     for (long k = 0; k < steps; k++) {
         ht_input_t in;
         random_input(&rng, &in, (k & 1) ? REGIME_WIDE : REGIME_CRUISE);
+        if (any_row) {
+            in.x = (int16_t)(uint16_t)ts_rng_next(&rng);
+            in.y = (int16_t)(uint16_t)ts_rng_next(&rng);
+            in.z = (int16_t)(uint16_t)ts_rng_next(&rng);
+        }
         balance_gyros(&rng, &rp, &in);
         ht_output_t out;
         ht_step(&ctl, &in, &out);
@@ -218,6 +227,11 @@ static void sweep_extreme(const ht_params_t *params, uint64_t seed, long steps, 
         }
         ts_errs_add_step(st->errs, &out, &ro);
     }
+}
+
+static void sweep_extreme(const ht_params_t *params, uint64_t seed, long steps, extreme_stats_t *st)
+{
+    sweep_extreme_rows(params, seed, steps, 0, st);
 }
 
 /* Print the worst errors; 0 when one is beyond its limit. */
@@ -375,6 +389,102 @@ static void test_sweep_random_legal_parameters(void)
     }
 }
 
+/* Four corners at scale 32 (three scheduled, both pitch modes) with the tilt
+ * row drawn over the whole int16 range (elements up to 2: a row no estimator
+ * gives, but ht_step takes any input, and fuzz_ht_step draws it so). */
+static void test_sweep_corners_any_row(void)
+{
+    const q16_t g = HT_GAIN_MAX_Q16;
+    const q16_t t = HT_MAX_TILT_LIMIT_Q16;
+    const int32_t v_hi = HT_V_REF_MAX_CM_S, v_lo = HT_V_MIN_LOWEST_CM_S;
+    const int32_t v_min_32 = ht_v_min_for_scale(v_hi);
+    const struct {
+        const char *name;
+        ht_params_t p;
+    } corners[] = {
+        {"any row: kp 64, kff 8, kd 8, schedule, scale 32",
+         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+        {"any row: kp 64, kff 1, kd 15, schedule, scale 32, tilt cross",
+         gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
+        {"any row: kp 64, kff 8, kd 8, schedule, scale 32, smallest v_min, tilt cross",
+         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
+                HT_PITCH_TILT_CROSS)},
+        {"any row: kp 64, kff 14, kd 64, no schedule, scale 32",
+         gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
+    };
+    const int n = (int)(sizeof corners / sizeof corners[0]);
+    int failed = 0;
+    for (int c = 0; c < n; c++) {
+        extreme_stats_t st;
+        extreme_stats_init(&st);
+        sweep_extreme_rows(&corners[c].p, 0xA11120u + (uint64_t)c, EXTREME_STEPS, 1, &st);
+        failed |= !report_extreme(corners[c].name, &st);
+        for (int i = 0; i < 3; i++) {
+            TEST_ASSERT_GREATER_THAN(EXTREME_STEPS / 20, st.unsaturated[i]);
+        }
+    }
+    TEST_ASSERT_FALSE(failed);
+}
+
+/*
+ * The input fuzz_ht_step found at a legal corner (tests/fuzz/corpus/ht_step/
+ * f9da17b26812b034d774784b6e5d9f2dd75c7d57): kp_rudder 63.99, kd_rudder 16,
+ * schedule on, v_ref 104.34 m/s over v_min 3.30 m/s with the airspeed floored
+ * (s_ff = 31.6, kp_rudder * s_ff = 2023), tilt cross product, and the
+ * unnormalized row (-1.95, 1.93, -1.25). The rudder was 2.03 LSB off: the
+ * ratio's Q24 rounding (0.4 LSB of Q24) reached the yaw error through Y = 1.93
+ * (1.3 LSB after the gain), and the three Q20 terms of the demand were each
+ * rounded before the scale of 31.6 (0.2 LSB more). Now 0.03 LSB.
+ */
+static void test_fuzz_regression_rudder_at_scale_32(void)
+{
+    ht_params_t p = HT_PARAMS_DEFAULT;
+    p.kp_aileron = 13364;
+    p.kp_elevator = 11518;
+    p.kp_rudder = 4194097;
+    p.kff_aileron = 11565;
+    p.kff_elevator = 11565;
+    p.kff_rudder = 11566;
+    p.kd_aileron = 78893;
+    p.kd_elevator = 65785;
+    p.kd_rudder = 1048565;
+    p.v_min_cm_s = 330;
+    p.v_ref_cm_s = 10434;
+    p.schedule = 1;
+    p.max_tilt = 423827;
+    p.pitch_mode = HT_PITCH_TILT_CROSS;
+    ht_controller_t ctl;
+    ht_param_id_t bad;
+    TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, &p, &bad));
+    ht_input_t in = {0};
+    in.x = -31877;
+    in.y = 31627;
+    in.z = -20481;
+    in.turn_rate_rad_s = -1;
+    in.pitch_ratio = -1;
+    in.airspeed_cm_s = -1;
+    in.gyro_rad_s[0] = in.gyro_rad_s[1] = in.gyro_rad_s[2] = -1;
+    in.inverted = 255;
+    ht_output_t out;
+    ht_step(&ctl, &in, &out);
+    ht_ref_params_t rp;
+    ht_ref_input_t ri;
+    ht_ref_output_t ro;
+    ht_ref_params_from_controller(&ctl, &rp);
+    ht_ref_input_from_fixed(&in, &ri);
+    ht_ref_step(&rp, &ri, &ro);
+    TEST_ASSERT_FALSE(ts_on_branch_boundary(&ro, &rp));
+    TEST_ASSERT_TRUE(fabs(ro.demand[2]) < 1.0); /* the rudder is unsaturated */
+    const double err[3] = {fabs(out.aileron - ro.aileron * 16384.0),
+                           fabs(out.elevator - ro.elevator * 16384.0),
+                           fabs(out.rudder - ro.rudder * 16384.0)};
+    printf("fuzz regression: rudder %d, reference %.4f, error %.3f LSB (was 2.03)\n", out.rudder,
+           ro.rudder * 16384.0, err[2]);
+    for (int i = 0; i < 3; i++) {
+        TEST_ASSERT_TRUE(err[i] <= LIMIT_SURFACES_LSB);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -385,5 +495,7 @@ int main(void)
     RUN_TEST(test_sweep_tilt_cross);
     RUN_TEST(test_sweep_legal_corners);
     RUN_TEST(test_sweep_random_legal_parameters);
+    RUN_TEST(test_sweep_corners_any_row);
+    RUN_TEST(test_fuzz_regression_rudder_at_scale_32);
     return UNITY_END();
 }
