@@ -199,5 +199,6 @@ def explain(m: ModelInfo) -> str:
     if "does not exist" in m.trim_error:
         return (f"needs a property JSBSim alone does not define ({m.trim_error}); a "
                 "FlightGear-only model")
-    return (f"JSBSim: {m.trim_error}; fly it with [initial] trim = false (released at the "
-            "initial speed untrimmed) or try another speed")
+    why = m.trim_error.split(" (at ")[0]
+    return (f"JSBSim: \"{why}\" at every speed of the sweep; fly it with [initial] trim = "
+            "false (released at the initial speed untrimmed)")

@@ -29,6 +29,7 @@ def test_the_trim_is_jsbsims() -> None:
     assert c172.trim_error.startswith("Trim Failed") and "(at 25 m/s)" in c172.trim_error
     assert "trim = false" not in acm.explain(c172)  # it trims: nothing to explain
     c172.trims_at = []
+    assert acm.explain(c172).startswith("JSBSim: \"Trim Failed\" at every speed of the sweep")
     assert "[initial] trim = false" in acm.explain(c172)
 
 
