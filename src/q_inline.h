@@ -256,22 +256,30 @@ static inline int32_t qi_mul32_fit_portable(int32_t a, int32_t b, unsigned shift
 }
 
 #if Q_TARGET_HAS_MUL64
+/* p (an exact 64-bit sum of products, |p| < 2^62) rounded by shift in
+ * [1, 62], ties toward +inf, saturated to int32: the one rounding of
+ * qi_mul32 and qi_dot3 on a core with a 32x32->64 multiplier. */
+static inline int32_t qi_round_sat64(int64_t p, unsigned shift)
+{
+    const unsigned half_shift = shift - 1u;
+    const uint64_t half = (uint64_t)1u << half_shift;
+    int64_t r = p + (int64_t)half;
+    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
+    r >>= shift;
+    if (r > INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (r < INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)r;
+}
+
 static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
 {
     /* Cores with a 32x32->64 multiplier (SMULL, x86-64 IMUL): same bits as
      * the portable version below, proven by test_q14_wide. */
-    const unsigned half_shift = shift - 1u;
-    const uint64_t half = (uint64_t)1u << half_shift;
-    int64_t p = ((int64_t)a * (int64_t)b) + (int64_t)half;
-    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
-    p >>= shift;
-    if (p > INT32_MAX) {
-        return INT32_MAX;
-    }
-    if (p < INT32_MIN) {
-        return INT32_MIN;
-    }
-    return (int32_t)p;
+    return qi_round_sat64((int64_t)a * (int64_t)b, shift);
 }
 #else
 static inline int32_t qi_mul32(int32_t a, int32_t b, unsigned shift)
@@ -565,19 +573,9 @@ static inline int32_t qi_dot3_portable(int32_t a0, int32_t b0, int32_t a1, int32
 static inline int32_t qi_dot3(int32_t a0, int32_t b0, int32_t a1, int32_t b1, int32_t a2,
                               int32_t b2, unsigned shift)
 {
-    const unsigned half_shift = shift - 1u;
-    const uint64_t half = (uint64_t)1u << half_shift;
-    int64_t p = ((int64_t)a0 * (int64_t)b0) + ((int64_t)a1 * (int64_t)b1) +
-                ((int64_t)a2 * (int64_t)b2) + (int64_t)half;
-    // cppcheck-suppress misra-c2012-10.1 ; arithmetic >> by design (q14.c static assert)
-    p >>= shift;
-    if (p > INT32_MAX) {
-        return INT32_MAX;
-    }
-    if (p < INT32_MIN) {
-        return INT32_MIN;
-    }
-    return (int32_t)p;
+    return qi_round_sat64(((int64_t)a0 * (int64_t)b0) + ((int64_t)a1 * (int64_t)b1) +
+                              ((int64_t)a2 * (int64_t)b2),
+                          shift);
 }
 #else
 static inline int32_t qi_dot3(int32_t a0, int32_t b0, int32_t a1, int32_t b1, int32_t a2,
