@@ -256,7 +256,7 @@ static inline int32_t qi_mul32_fit_portable(int32_t a, int32_t b, unsigned shift
 }
 
 #if Q_TARGET_HAS_MUL64
-/* p (an exact 64-bit sum of products, |p| < 2^62) rounded by shift in
+/* p (an exact 64-bit sum of products, |p| <= 2^62) rounded by shift in
  * [1, 62], ties toward +inf, saturated to int32: the one rounding of
  * qi_mul32 and qi_dot3 on a core with a 32x32->64 multiplier. */
 static inline int32_t qi_round_sat64(int64_t p, unsigned shift)
