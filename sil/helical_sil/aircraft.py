@@ -17,7 +17,7 @@ import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Any, Callable, Iterator
 
 FT = 0.3048
 # the sweep of true airspeeds (m/s) each model is trimmed at: from a light
@@ -202,3 +202,168 @@ def explain(m: ModelInfo) -> str:
     why = m.trim_error.split(" (at ")[0]
     return (f"JSBSim: \"{why}\" at every speed of the sweep; fly it with [initial] trim = "
             "false (released at the initial speed untrimmed)")
+
+
+# --- aircraft new: a starter aircraft file from JSBSim's own trims -------------
+
+# The starter gains: the c172p's tuned set (sil/scenarios/aircraft/c172p.toml),
+# which also flew a light taildragger's turns (issue 16), with the roll axis
+# scaled by the model's roll authority against the c172p's (below).
+STARTER_GAINS: dict[str, float] = {
+    "kp_aileron": 5.0, "kp_elevator": 6.0, "kp_rudder": 0.3,
+    "kd_aileron": 0.7, "kd_elevator": 1.0, "kd_rudder": 1.0,
+    "kff_aileron": 0.0, "kff_elevator": 1.0, "kff_rudder": 0.5,
+    "alt_kp": 0.02, "alt_ki": 0.004, "alt_kd": 0.04, "alt_max_pitch": 0.25,
+    "alt_max_integral": 0.2, "spd_kp": 0.08, "spd_ki": 0.02, "spd_kff_pitch": 1.5,
+}
+# The c172p's roll rate after 1 s of full aileron from a trim at 50 m/s, 1500 m
+# (roll_authority("c172p", 50.0) = 0.870 with jsbsim 1.3.3; its tuned gains
+# fly at 50 m/s), the reference the starter roll gains are scaled against.
+C172P_ROLL_RATE_RAD_S = 0.87
+# a model's own stability augmentation, as its flight-control channels name it
+_SAS = re.compile(r"yaw[ _-]?damper|\bSAS\b|stability augmentation", re.IGNORECASE)
+# the starter v_ref: the fastest trimmed speed at no more than cruise power
+CRUISE_THROTTLE = 0.75
+
+
+@dataclass
+class TrimPoint:
+    speed_m_s: float
+    throttle: float
+    elevator: float
+    alpha_deg: float
+
+
+def _trimmed_fdm(model: str, v: float, altitude_m: float) -> Any:
+    """A JSBSim instance trimmed straight and level at v, or raises with
+    JSBSim's message. Run inside _quiet() and _scratch_cwd()."""
+    import jsbsim
+    fdm = jsbsim.FGFDMExec(None)
+    fdm.set_debug_level(0)
+    if not fdm.load_model(model):
+        raise RuntimeError(f"JSBSim could not load model {model!r}")
+    fdm["ic/h-sl-ft"] = altitude_m / FT
+    fdm["ic/vt-fps"] = v / FT
+    fdm["ic/gamma-deg"] = 0.0
+    if not fdm.run_ic():
+        raise RuntimeError("run_ic failed")
+    fdm["propulsion/set-running"] = -1
+    fdm["simulation/do_simple_trim"] = 1
+    return fdm
+
+
+def trim_points(model: str, altitude_m: float = DEFAULT_ALTITUDE_M, lo: float = 15.0,
+                hi: float = 260.0, ratio: float = 1.12) -> tuple[list[TrimPoint], str]:
+    """JSBSim's straight, level trims over a geometric speed sweep: the points
+    that trimmed, and JSBSim's message where it did not (the first one)."""
+    pts: list[TrimPoint] = []
+    err = ""
+    v = lo
+    while v <= hi:
+        with _quiet(), _scratch_cwd():
+            try:
+                fdm = _trimmed_fdm(model, v, altitude_m)
+                pts.append(TrimPoint(v, float(fdm["fcs/throttle-cmd-norm[0]"]),
+                                     float(fdm["fcs/elevator-pos-norm"]),
+                                     float(fdm["aero/alpha-deg"])))
+            except Exception as e:  # jsbsim's trim and property errors
+                if not err:
+                    err = f"{str(e).strip() or type(e).__name__} (at {v:.0f} m/s)"
+        v *= ratio
+    return pts, err
+
+
+def roll_authority(model: str, v: float, altitude_m: float = DEFAULT_ALTITUDE_M) -> float:
+    """The roll rate (rad/s) one second after full right aileron from a trim
+    at v: what the aileron can do, which the starter roll gains follow."""
+    with _quiet(), _scratch_cwd():
+        fdm = _trimmed_fdm(model, v, altitude_m)
+        fdm["fcs/aileron-cmd-norm"] = 1.0
+        t_end = fdm["simulation/sim-time-sec"] + 1.0
+        while fdm["simulation/sim-time-sec"] < t_end:
+            fdm.run()
+        return abs(float(fdm["velocities/p-rad_sec"]))
+
+
+def stability_augmentation(info: ModelInfo) -> str:
+    """The model's own damper or SAS, as named in its XML (the model's file
+    and the system files beside it), or ""."""
+    for f in [info.path, *sorted(info.path.parent.glob("Systems/*.xml"))]:
+        try:
+            m = _SAS.search(f.read_text(encoding="utf-8", errors="replace"))
+        except OSError:
+            continue
+        if m:
+            return f"{m.group(0)} ({f.relative_to(info.path.parent)})"
+    return ""
+
+
+def starter(model: str, altitude_m: float = DEFAULT_ALTITUDE_M) -> dict[str, Any]:
+    """Everything a starter aircraft file says, measured: the trim sweep, the
+    suggested v_ref and v_min, the trim throttle, the roll authority, the
+    scaled gains, and the notes (no trim; the model's own SAS)."""
+    info = next((m for m in find_models() if m.name == model), None)
+    if info is None:
+        raise ValueError(f"no JSBSim model {model!r} in {models_root()}")
+    if not info.fixed_wing:
+        raise ValueError(f"{model} is not flyable here: {info.why_not}")
+    pts, err = trim_points(model, altitude_m)
+    out: dict[str, Any] = {"model": model, "altitude_m": altitude_m, "points": pts,
+                           "trim_error": err, "sas": stability_augmentation(info)}
+    if not pts:
+        return out
+    at_cruise = [p for p in pts if p.throttle <= CRUISE_THROTTLE]
+    cruise = at_cruise[-1] if at_cruise else pts[0]
+    v_ref = round(cruise.speed_m_s, 1)
+    v_min = round(max(pts[0].speed_m_s, v_ref / 32.0, 1.0), 1)
+    p = roll_authority(model, v_ref, altitude_m)
+    scale = min(4.0, max(0.25, C172P_ROLL_RATE_RAD_S / p)) if p > 0.0 else 1.0
+    gains = dict(STARTER_GAINS)
+    for k in ("kp_aileron", "kd_aileron"):
+        gains[k] = round(gains[k] * scale, 3)
+    out.update(v_ref=v_ref, v_min=v_min, throttle=cruise.throttle, roll_rate=p,
+               roll_scale=scale, gains=gains)
+    return out
+
+
+def starter_toml(s: dict[str, Any]) -> str:
+    """The aircraft file of starter(): TOML the scenario loader takes."""
+    lines = [f"# Starter aircraft file for JSBSim's {s['model']}, written by "
+             f"`python -m helical_sil aircraft new {s['model']}`.",
+             f"# JSBSim's straight, level trims at {s['altitude_m']:g} m:"]
+    for p in s["points"]:
+        lines.append(f"#   {p.speed_m_s:6.1f} m/s: throttle {p.throttle:.2f}, elevator "
+                     f"{p.elevator:+.3f} (JSBSim's sign), alpha {p.alpha_deg:+.1f} deg")
+    if s["trim_error"] and s["points"]:
+        lines.append(f"# not trimmed elsewhere; JSBSim said: {s['trim_error']}")
+    if s["sas"]:
+        lines.append(f"# NOTE: the model has its own stability augmentation: {s['sas']}. "
+                     "It acts on the")
+        lines.append("# surfaces beside the law (a yaw damper fights a coordinated turn): "
+                     "check the turn rate")
+        lines.append("# error and the sideslip, and tune (python -m helical_sil tune) before "
+                     "trusting the gains.")
+    if not s["points"]:
+        why = s["trim_error"].split(" (at ")[0]
+        lines += [f'# NO TRIM: JSBSim trims this model at no speed of the sweep ("{why}"). Fly '
+                  "it with",
+                  "# [initial] trim = false in the scenario: it is released untrimmed at the",
+                  "# initial speed, and the holds must find the throttle and pitch "
+                  "themselves.",
+                  f'model = "{s["model"]}"', "", "[gains]",
+                  "v_ref = 50.0  # a guess: no trimmed speed to take it from"]
+        return "\n".join(lines) + "\n"
+    lines += [f"# v_ref: the fastest trimmed speed at <= {CRUISE_THROTTLE:g} throttle (cruise "
+              "power); v_min: the lowest trimmed speed",
+              f"# roll authority at v_ref: {s['roll_rate']:.2f} rad/s after 1 s of full aileron "
+              f"(c172p {C172P_ROLL_RATE_RAD_S:g}); roll gains x {s['roll_scale']:.2f}",
+              "# Starter gains: the c172p's tuned set, the roll axis scaled. Tune before "
+              "flying anything real.",
+              f'model = "{s["model"]}"',
+              f'description = "JSBSim {s["model"]} (starter file)"', "",
+              "[initial]", f"altitude_m = {s['altitude_m']:g}",
+              f"airspeed_m_s = {s['v_ref']:g}", "", "[gains]",
+              f"v_ref = {s['v_ref']:g}", f"v_min = {s['v_min']:g}",
+              f"throttle_trim = {s['throttle']:.3f}  # JSBSim's trim at v_ref"]
+    lines += [f"{k} = {v:g}" for k, v in s["gains"].items()]
+    return "\n".join(lines) + "\n"

@@ -484,6 +484,32 @@ def cmd_aircraft_list(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_aircraft_new(args: argparse.Namespace) -> int:
+    from helical_sil import aircraft as acm
+    out = Path(args.out)
+    if out.exists() and not args.force:
+        raise UsageError(f"{out} exists (--force overwrites it)")
+    try:
+        s = acm.starter(args.model, args.altitude_m)
+    except ValueError as e:
+        raise UsageError(str(e)) from None
+    out.write_text(acm.starter_toml(s))
+    pts = s["points"]
+    if pts:
+        print(f"{args.model}: trims at {pts[0].speed_m_s:.1f}-{pts[-1].speed_m_s:.1f} m/s; "
+              f"v_ref {s['v_ref']:g}, v_min {s['v_min']:g}, throttle {s['throttle']:.2f}; roll "
+              f"{s['roll_rate']:.2f} rad/s after 1 s of full aileron (roll gains x "
+              f"{s['roll_scale']:.2f})")
+    else:
+        why = s["trim_error"].split(" (at ")[0]
+        print(f"{args.model}: JSBSim trims it at no speed of the sweep (\"{why}\"): fly it "
+              "with [initial] trim = false")
+    if s["sas"]:
+        print(f"{args.model}: the model has its own stability augmentation: {s['sas']}")
+    print(f"wrote {out}")
+    return 0
+
+
 def _add_aircraft_parser(sub: Any) -> None:
     from helical_sil import aircraft as acm
     a = sub.add_parser("aircraft", **_HELP, help="the JSBSim models that can be flown",
@@ -505,6 +531,22 @@ def _add_aircraft_parser(sub: Any) -> None:
                      help="parallel processes (default: the CPU count)")
     lst.add_argument("--json", default=None, help="also write the table as JSON to this file")
     lst.set_defaults(func=cmd_aircraft_list)
+    new = asub.add_parser(
+        "new", **_HELP, help="write a starter aircraft file for a JSBSim model",
+        description="Trim MODEL straight and level with JSBSim over 15-260 m/s and write a "
+                    "starter aircraft file: the trims (throttle, elevator, alpha per speed) as "
+                    "comments, v_ref (the fastest trimmed speed at no more than 75 %% "
+                    "throttle), v_min (the lowest trimmed speed), the trim throttle, and the "
+                    "c172p's tuned gains with the roll axis scaled by the model's roll "
+                    "authority; a note when the model has its own stability augmentation (a "
+                    "yaw damper) or trims nowhere (with JSBSim's reason and the trim = false "
+                    "path).")
+    new.add_argument("model", help="JSBSim model name (see `aircraft list`)")
+    new.add_argument("--out", required=True, help="aircraft TOML file to write")
+    new.add_argument("--altitude-m", type=float, default=acm.DEFAULT_ALTITUDE_M,
+                     help=f"trim altitude above sea level (default {acm.DEFAULT_ALTITUDE_M:g})")
+    new.add_argument("--force", action="store_true", help="overwrite --out")
+    new.set_defaults(func=cmd_aircraft_new)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -49,3 +49,53 @@ def test_a_model_with_output_directives_writes_nothing_here(tmp_path, monkeypatc
     acm.trim_sweep(g, speeds=(100.0,))
     assert g.trims_at == [100.0]
     assert list(tmp_path.iterdir()) == []
+
+
+def test_aircraft_new_writes_a_file_the_loader_takes(tmp_path) -> None:
+    """The c172p's starter: v_ref at cruise power near its tuned 50 m/s, v_min
+    the slowest trim, roll gains near the tuned ones (it is the reference);
+    the file loads as an aircraft of a scenario."""
+    from pathlib import Path
+
+    from helical_sil.scenario import load_scenario
+    (tmp_path / "aircraft").mkdir()
+    out = tmp_path / "aircraft" / "mine.toml"
+    assert main(["aircraft", "new", "c172p", "--out", str(out)]) == 0
+    text = out.read_text()
+    assert 'model = "c172p"' in text and "stability augmentation" not in text
+    sc = load_scenario(_scenario(tmp_path, "mine"))
+    g = sc.gains
+    assert 45.0 < g["v_ref"] < 56.0 and 24.0 < g["v_min"] < 30.0
+    assert 0.6 < g["throttle_trim"] < 0.75
+    assert 4.0 < g["kp_aileron"] < 6.0 and g["kp_elevator"] == 6.0
+    assert main(["aircraft", "new", "c172p", "--out", str(out)]) == 2  # exists: not overwritten
+    assert main(["aircraft", "new", "sgs233", "--out", str(tmp_path / "g.toml")]) == 2  # glider
+    assert not Path(tmp_path / "g.toml").exists()
+
+
+def test_aircraft_new_names_the_models_own_yaw_damper(tmp_path) -> None:
+    out = tmp_path / "t38.toml"
+    assert main(["aircraft", "new", "T38", "--out", str(out)]) == 0
+    text = out.read_text()
+    assert "own stability augmentation" in text and "yaw damper" in text.lower()
+
+
+def _scenario(tmp_path, aircraft: str):
+    p = tmp_path / "s.toml"
+    p.write_text(f'aircraft = "{aircraft}"\nduration_s = 5\n[[command]]\nt_s = 0\nlabel = "a"\n'
+                 'turn_rate_deg_s = 0\n[[pass]]\nsegment = "a"\nmetric = "turn_rate_rmse_deg_s"\n'
+                 "max = 1\n")
+    return p
+
+
+def test_aircraft_new_for_a_model_that_does_not_trim(tmp_path) -> None:
+    """JSBSim's pa28 trims at no speed here: the file says so, with JSBSim's
+    message and the trim = false path, and still loads."""
+    from helical_sil.scenario import load_scenario
+    (tmp_path / "aircraft").mkdir()
+    out = tmp_path / "aircraft" / "pa.toml"
+    assert main(["aircraft", "new", "pa28", "--out", str(out)]) == 0
+    text = out.read_text()
+    assert 'NO TRIM: JSBSim trims this model at no speed of the sweep ("Trim Failed")' in text
+    assert "[initial] trim = false" in text
+    assert load_scenario(_scenario(tmp_path, "pa")).gains["v_ref"] == 50.0
