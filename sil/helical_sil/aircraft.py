@@ -12,6 +12,7 @@ first failure's message is JSBSim's own.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import re
 import xml.etree.ElementTree as ET
@@ -298,6 +299,20 @@ def stability_augmentation(info: ModelInfo) -> str:
     return ""
 
 
+def alpha_limit_deg(info: ModelInfo) -> float | None:
+    """The model's own stall angle of attack (<aerodynamics><alphalimits><max>),
+    in degrees, or None when it states none."""
+    try:
+        el = ET.parse(info.path).getroot().find("aerodynamics/alphalimits")
+    except (ET.ParseError, OSError):
+        return None
+    mx = None if el is None else el.find("max")
+    if mx is None or mx.text is None:
+        return None
+    v = float(mx.text)
+    return v if el.get("unit", "RAD").upper() == "DEG" else math.degrees(v)
+
+
 def starter(model: str, altitude_m: float = DEFAULT_ALTITUDE_M) -> dict[str, Any]:
     """Everything a starter aircraft file says, measured: the trim sweep, the
     suggested v_ref and v_min, the trim throttle, the roll authority, the
@@ -321,8 +336,14 @@ def starter(model: str, altitude_m: float = DEFAULT_ALTITUDE_M) -> dict[str, Any
     gains = dict(STARTER_GAINS)
     for k in ("kp_aileron", "kd_aileron"):
         gains[k] = round(gains[k] * scale, 3)
+    alpha_max = alpha_limit_deg(info)
     out.update(v_ref=v_ref, v_min=v_min, throttle=cruise.throttle, roll_rate=p,
-               roll_scale=scale, gains=gains)
+               roll_scale=scale, gains=gains,
+               stall_alpha_deg=round(alpha_max if alpha_max is not None
+                                     else max(q.alpha_deg for q in pts), 1),
+               stall_alpha_source="the model's <alphalimits>" if alpha_max is not None
+               else "the highest trimmed alpha",
+               max_airspeed_m_s=round(pts[-1].speed_m_s, 1))
     return out
 
 
@@ -366,4 +387,8 @@ def starter_toml(s: dict[str, Any]) -> str:
               f"v_ref = {s['v_ref']:g}", f"v_min = {s['v_min']:g}",
               f"throttle_trim = {s['throttle']:.3f}  # JSBSim's trim at v_ref"]
     lines += [f"{k} = {v:g}" for k, v in s["gains"].items()]
+    lines += ["", "# What a run is checked against (metrics: run.envelope): the stall angle of "
+              f"attack ({s['stall_alpha_source']})", "# and the fastest level trim of the sweep.",
+              "[envelope]", f"stall_alpha_deg = {s['stall_alpha_deg']:g}",
+              f"max_airspeed_m_s = {s['max_airspeed_m_s']:g}"]
     return "\n".join(lines) + "\n"

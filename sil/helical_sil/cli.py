@@ -199,6 +199,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"  {'ok  ' if c['ok'] else 'FAIL'} {c['segment']}.{c['metric']} = {val} ({lim})")
         if c.get("reason"):
             print(f"       {c['reason']}")
+    for line in m["run"].get("envelope", []):
+        print(f"  envelope: {line}")
     print(f"wrote {Path(args.out).resolve()} (metrics.json, telemetry.csv"
           f"{', plots' if not args.no_plots else ''})")
     return 0 if m["passed"] else 1

@@ -442,12 +442,41 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
     if sc.modes is not None:
         run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
         run.update(failsafe_metrics(res))
+    run.update(envelope_metrics(res))
     if res.end_reason is not None:
         run["end_reason"] = res.end_reason
         run["ground_contact_s"] = res.end_t_s
     return {"scenario": sc.name, "aircraft": sc.aircraft.name, "seed": sc.seed,
             "control_rate_hz": sc.control_rate_hz, "sim_rate_hz": sc.sim_rate_hz,
             "trims": res.trims, "run": run, "segments": segs}
+
+
+def envelope_metrics(res: Any) -> dict[str, Any]:
+    """Time beyond the aircraft file's [envelope] (absent: nothing): angle of
+    attack above stall_alpha_deg, true airspeed above max_airspeed_m_s, and one
+    line each that says so (when it first happened, for how long)."""
+    env = res.scenario.aircraft.envelope
+    if not env:
+        return {}
+    tel = res.telemetry
+    t = tel["t_s"]
+    dt = float(t[1] - t[0]) if t.size > 1 else 0.0
+    out: dict[str, Any] = {"envelope": []}
+    for key, col, what, unit in (("stall_alpha_deg", "alpha_deg", "angle of attack above the "
+                                  "model's stall", "deg"),
+                                 ("max_airspeed_m_s", "airspeed_m_s", "airspeed above the fastest "
+                                  "trim", "m/s")):
+        if key not in env:
+            continue
+        beyond = tel[col] > env[key]
+        name = "time_" + key.replace("_deg", "").replace("_m_s", "") + "_exceeded_s"
+        out[name] = float(np.count_nonzero(beyond) * dt)
+        if beyond.any():
+            i = int(np.argmax(beyond))
+            out["envelope"].append(
+                f"{what} ({env[key]:g} {unit}) from t = {t[i]:.2f} s, {out[name]:.2f} s in all, "
+                f"worst {float(np.max(tel[col])):.1f} {unit}")
+    return out
 
 
 def evaluate(metrics: dict[str, Any], criteria: list[PassCriterion]) -> list[dict[str, Any]]:

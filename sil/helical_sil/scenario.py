@@ -201,6 +201,15 @@ class Aircraft:
     mode_tables: dict[str, dict[str, Any]] = field(default_factory=dict)
     # the aircraft file that set each gain (absent: GAIN_DEFAULTS), for error messages
     gain_sources: dict[str, Path] = field(default_factory=dict)
+    # [envelope]: the model's limits a run is checked against (ENVELOPE_KEYS)
+    envelope: dict[str, float] = field(default_factory=dict)
+
+
+# An aircraft file's [envelope] (written by `aircraft new`): the highest angle
+# of attack the model holds (its <alphalimits>, else its highest trimmed
+# alpha) and the fastest speed it was trimmed at; a run reports the time
+# beyond either (metrics.envelope_metrics).
+ENVELOPE_KEYS = {"stall_alpha_deg": (1.0, 45.0), "max_airspeed_m_s": (1.0, 400.0)}
 
 
 # --- fault campaign (issue 7) ---
@@ -458,7 +467,7 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
             f"{_where(src, key)}: unknown aircraft {_show(name)} (known: {', '.join(known) or 'none'})")
     doc = _load_toml(p)
     _check_keys(p, "", doc, ("model", "description", "gains", "initial", "modes", "nav", "fbw",
-                             "aoa"))
+                             "aoa", "envelope"))
     # no silent defaults for what makes an airframe: the JSBSim model and the
     # speed the gains are tuned at (the library's v_ref of 15 m/s would fly a
     # 50 m/s aircraft on gains scaled for a model plane)
@@ -486,8 +495,12 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
     tables = {k: _table(p, k, doc[k]) for k in ("modes", "nav", "fbw", "aoa") if k in doc}
     # parse once here so a bad aircraft file names its own key
     _parse_mode_tables(p, tables, ModesConfig())
+    env_t = _table(p, "envelope", doc.get("envelope", {}))
+    _check_keys(p, "envelope", env_t, tuple(ENVELOPE_KEYS))
+    envelope = {k: _num(p, f"envelope.{k}", v, *ENVELOPE_KEYS[k]) for k, v in env_t.items()}
     return Aircraft(name=name, model=model, description=desc, gains=gains, altitude_m=alt,
-                    airspeed_m_s=spd, mode_tables=tables, gain_sources=sources)
+                    airspeed_m_s=spd, mode_tables=tables, gain_sources=sources,
+                    envelope=envelope)
 
 
 def _parse_mode_tables(src: Path, tables: dict[str, dict[str, Any]], mc: ModesConfig) -> None:

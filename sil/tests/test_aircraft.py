@@ -68,6 +68,9 @@ def test_aircraft_new_writes_a_file_the_loader_takes(tmp_path) -> None:
     assert 45.0 < g["v_ref"] < 56.0 and 24.0 < g["v_min"] < 30.0
     assert 0.6 < g["throttle_trim"] < 0.75
     assert 4.0 < g["kp_aileron"] < 6.0 and g["kp_elevator"] == 6.0
+    # its envelope: the c172p's <alphalimits> (0.28 rad) and its fastest level trim
+    assert sc.aircraft.envelope["stall_alpha_deg"] == 16.0
+    assert 60.0 < sc.aircraft.envelope["max_airspeed_m_s"] < 70.0
     assert main(["aircraft", "new", "c172p", "--out", str(out)]) == 2  # exists: not overwritten
     assert main(["aircraft", "new", "sgs233", "--out", str(tmp_path / "g.toml")]) == 2  # glider
     assert not Path(tmp_path / "g.toml").exists()

@@ -231,6 +231,34 @@ def test_a_run_that_hits_the_ground_stops_and_fails_with_the_reason(tmp_path: Pa
     assert checks["max_altitude_loss_m"]["ok"] is True
     assert checks["ground_contact_s"]["ok"] is False
     assert checks["ground_contact_s"]["reason"] == reason
+    assert m["run"]["envelope"] == []  # checked against the c172p's [envelope]: inside it
     # the telemetry ends at the contact
     rows = (out / "telemetry.csv").read_text().splitlines()
     assert len(rows) - 1 == round(t_hit * 40)
+
+
+def test_the_envelope_is_reported_with_when_and_how_long() -> None:
+    """metrics.envelope_metrics on a made-up run at 10 Hz: alpha above 16 deg
+    for 3 steps from t = 0.5 s, airspeed above 65.5 m/s for 2 steps from 0.8 s."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from helical_sil import metrics as met
+    t = np.arange(10) * 0.1
+    alpha = np.array([5, 5, 5, 5, 5, 17, 18, 16.5, 5, 5], dtype=float)
+    v = np.array([50, 50, 50, 50, 50, 50, 50, 50, 66, 70], dtype=float)
+    res = SimpleNamespace(
+        scenario=SimpleNamespace(aircraft=SimpleNamespace(
+            envelope={"stall_alpha_deg": 16.0, "max_airspeed_m_s": 65.5})),
+        telemetry={"t_s": t, "alpha_deg": alpha, "airspeed_m_s": v})
+    e = met.envelope_metrics(res)
+    assert e["time_stall_alpha_exceeded_s"] == pytest.approx(0.3)
+    assert e["time_max_airspeed_exceeded_s"] == pytest.approx(0.2)
+    assert e["envelope"] == [
+        "angle of attack above the model's stall (16 deg) from t = 0.50 s, 0.30 s in all, "
+        "worst 18.0 deg",
+        "airspeed above the fastest trim (65.5 m/s) from t = 0.80 s, 0.20 s in all, "
+        "worst 70.0 m/s"]
+    res.scenario.aircraft.envelope = {}
+    assert met.envelope_metrics(res) == {}

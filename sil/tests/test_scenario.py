@@ -124,6 +124,8 @@ def test_not_toml_and_missing_file(tmp_path: Path) -> None:
      "(m/s, int32 x100)"),
     ('model = "c172p"\n[gains]\nv_ref = 30\nv_min = 40\n',
      "'gains.v_min' = 40 (this file) must not exceed 'gains.v_ref' = 30 (this file)"),
+    ('model = "c172p"\n[gains]\nv_ref = 30\n[envelope]\nstall_alpha_deg = 60\n',
+     "'envelope.stall_alpha_deg'"),
     ('model = "c172p"\n[gains]\nv_ref = 30\nalt_kp = 65\n',
      "'gains.alt_kp' = 65 is outside [0, 64] (pitch ratio per m, Q16)"),
 ])
