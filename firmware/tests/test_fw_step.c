@@ -155,7 +155,11 @@ static void test_guided_path_is_the_library_chain(void)
     ht_controller_t ctl;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, &cfg.law, NULL));
     const ht_input_t li = {-5000, 0, 15600, Q11_FROM_REAL(0.3), pitch, 2500, {0, 300, 0}, 0u};
+    /* ht_step writes the fields, not the padding: zero it as the firmware's
+     * own output is, so that the whole-struct comparison below compares
+     * what the law wrote (uninitialised padding made it depend on the stack) */
     ht_output_t lo;
+    memset(&lo, 0, sizeof lo);
     ht_step(&ctl, &li, &lo);
     const os_command_t cmd = {lo.aileron, lo.elevator, lo.rudder, thr};
     uint16_t pulses[OS_MAX_CHANNELS];

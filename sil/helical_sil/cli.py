@@ -12,6 +12,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Iterable
 
+from helical_sil.backend import BACKENDS, BackendError, map_ordered
 from helical_sil.board import BoardError
 from helical_sil.scenario import Scenario, ScenarioError, load_scenario
 from helical_sil.sim import SimError
@@ -233,7 +234,32 @@ def _batch_files(args: argparse.Namespace) -> list[Path]:
     return files
 
 
+def _batch_one(job: tuple[str, str, str | None, bool, int | None, str | None]
+               ) -> tuple[str, dict[str, Any] | None, str | None]:
+    """One batch run, in whichever process the backend gives it: (its output
+    folder's name, metrics.json's content or None, the error or None)."""
+    f, out, board_lib, plots, seed, attitude = job
+    try:
+        m = run_one(Path(f), Path(out), board_lib, plots=plots, seed=seed, attitude=attitude)
+    except (ScenarioError, SimError) as e:
+        return Path(out).name, None, str(e)
+    return Path(out).name, m, None
+
+
+def _add_backend_args(p: argparse.ArgumentParser, jobs_help: str) -> None:
+    p.add_argument("--jobs", type=int, default=1, help=jobs_help)
+    p.add_argument("--backend", choices=BACKENDS, default="local",
+                   help="where the runs execute: this machine's processes (local, the "
+                        "default) or Ray (pip install 'helical-sil[ray]'); the results are "
+                        "the same bit for bit")
+    p.add_argument("--address", default=None,
+                   help="--backend ray: an existing Ray cluster (ray://host:10001 or "
+                        "host:6379); default: a local Ray with --jobs CPUs for this run")
+
+
 def cmd_batch(args: argparse.Namespace) -> int:
+    if args.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
     files = _batch_files(args)
     # --- fault campaign (issue 7): --seeds flies every scenario once per seed ---
     seeds: list[int | None] = list(args.seeds) if getattr(args, "seeds", None) else [None]
@@ -250,13 +276,15 @@ def cmd_batch(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     failed_run = False
     files = [f for f, _sd, _n in runs]
-    for i, (f, sd, name) in enumerate(runs):
-        _progress(i, len(files), name, t0)
-        try:
-            m = run_one(f, out / name, args.board_lib, plots=not args.no_plots, seed=sd,
-                        attitude=run_att[name])
-        except (ScenarioError, SimError) as e:  # ScenarioError: the file changed meanwhile
-            sys.stderr.write(f"\nerror: {e}\n")
+    _progress(0, len(files), "", t0)
+    jobs = [(str(f), str(out / name), args.board_lib, not args.no_plots, sd, run_att[name])
+            for f, sd, name in runs]
+    done = map_ordered(_batch_one, jobs, jobs=args.jobs, backend=args.backend,
+                       address=args.address,
+                       progress=lambda k, r: _progress(k, len(files), r[0], t0))
+    for (_f, _sd, name), (_n, m, err) in zip(runs, done):
+        if err is not None:  # the file changed meanwhile, or the simulation failed
+            sys.stderr.write(f"\nerror: {err}\n")
             failed_run = True
             rows.append({"scenario": name, "result": "ERROR"})
             continue
@@ -401,7 +429,8 @@ def cmd_upsets(args: argparse.Namespace) -> int:
         args.aircraft, args.count, args.seed, out, args.board_lib,
         altitude_m=args.altitude_m, duration_s=args.duration_s, floor_m=args.floor_m,
         jobs=args.jobs, plots=args.plots, known_failures=known,
-        pitch_mode=args.pitch_mode, attitude=args.attitude)
+        pitch_mode=args.pitch_mode, attitude=args.attitude, backend=args.backend,
+        address=args.address)
     print(table)
     print(f"wrote {out.resolve()} (summary.md, summary.json, one folder and "
           "scenario file per upset)")
@@ -448,7 +477,7 @@ def _add_upsets_parser(sub: Any) -> None:
     u.add_argument("--floor-m", type=float, default=upsets.DEFAULT_FLOOR_M,
                    help=f"lowest altitude allowed, m above the ground (default "
                         f"{upsets.DEFAULT_FLOOR_M:g})")
-    u.add_argument("--jobs", type=int, default=1, help="parallel runs (default 1)")
+    _add_backend_args(u, "parallel runs (default 1)")
     u.add_argument("--plots", action="store_true", help="also write the PNG plots of each run")
     u.add_argument("--attitude", choices=("truth", "estimate"), default="estimate",
                    help="what the law flies on: the firmware's estimate (default) or "
@@ -596,6 +625,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--seeds", nargs="+", type=int, default=None,  # fault campaign (issue 7)
                    help="fly every scenario once per seed (instead of its own seed); "
                         "outputs NAME_seedN")
+    _add_backend_args(b, "parallel runs (default 1)")
     b.set_defaults(func=cmd_batch)
     c = sub.add_parser("compare", help="metrics of runs side by side", **_HELP,
                        description="Print, per segment label of the first run, the metrics of "
@@ -624,7 +654,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ScenarioError, UsageError) as e:
         print(f"error: {e}", file=sys.stderr)
         return EXIT_INPUT
-    except (BoardError, SimError) as e:
+    except (BoardError, SimError, BackendError) as e:
         print(f"error: {e}", file=sys.stderr)
         return EXIT_RUNTIME
     except OSError as e:  # inputs and --out were checked: the system failed (disk full ...)

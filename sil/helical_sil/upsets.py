@@ -32,13 +32,13 @@ import math
 import sys
 import time
 import zlib
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from helical_sil.backend import map_ordered
 from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR, Upset, load_aircraft
 
 # Calibrated airspeed range (m/s) of the upsets: just above the clean stall to
@@ -247,7 +247,8 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
                  duration_s: float = DEFAULT_DURATION_S, floor_m: float = DEFAULT_FLOOR_M,
                  jobs: int = 1, plots: bool = False,
                  known_failures: list[str] | None = None,
-                 pitch_mode: str = "earth_frame", attitude: str = "estimate") -> tuple[int, str]:
+                 pitch_mode: str = "earth_frame", attitude: str = "estimate",
+                 backend: str = "local", address: str | None = None) -> tuple[int, str]:
     """Write the scenario files, fly them, write summary.md / summary.json.
     known_failures ("AIRCRAFT:INDEX") are upsets that fail on a known library
     defect: still failures in every table and fraction, but they do not count
@@ -270,17 +271,9 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
     results: list[UpsetResult] = []
     t0 = time.perf_counter()
     _progress(0, n, "upsets", t0)
-    if jobs > 1:
-        with ProcessPoolExecutor(max_workers=jobs) as ex:
-            ms = []
-            for k, m in enumerate(ex.map(_fly, jobs_list)):
-                ms.append(m)
-                _progress(k + 1, n, f"{meta[k][1]} upset {meta[k][0]}", t0)
-    else:
-        ms = []
-        for k, job in enumerate(jobs_list):
-            ms.append(_fly(job))
-            _progress(k + 1, n, f"{meta[k][1]} upset {meta[k][0]}", t0)
+    # local processes or Ray (backend.py): the results in the upsets' order
+    ms = map_ordered(_fly, jobs_list, jobs=jobs, backend=backend, address=address,
+                     progress=lambda k, _m: _progress(k, n, f"upsets ({backend})", t0))
     known_set = set(known_failures or ())
     for (i, ac, up, p), m in zip(meta, ms):
         results.append(_result(i, ac, up, m, p, altitude_m))
