@@ -541,6 +541,42 @@ def cmd_aircraft_new(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_tune(args: argparse.Namespace) -> int:
+    from helical_sil import tune as tn
+    if args.jobs < 1 or args.trials < 1:
+        raise UsageError("--jobs and --trials must be at least 1")
+    src = Path(args.aircraft)
+    if not src.is_file():
+        raise UsageError(f"{src}: no such aircraft file")
+    t0 = time.perf_counter()
+    r = tn.tune(src, Path(args.out), args.trials, args.seed, args.jobs, args.backend,
+                args.address, args.board_lib,
+                progress=lambda i, n, what: _progress(i, n, what, t0))
+    print(tn.report_md(r))
+    print(f"wrote {Path(args.out).resolve()} (report.md, search.png, result.json, "
+          f"{Path(r['tuned_file']).name}, study.db: run again to continue the search)")
+    return 0
+
+
+def _add_tune_parser(sub: Any) -> None:
+    t = sub.add_parser(
+        "tune", **_HELP, help="find the law's gains from SIL flights (Optuna)",
+        description="Search the law's gains (kp, kd, kff of the three axes) for an aircraft "
+                    "file with Optuna's TPE sampler: each trial flies the standard manoeuvres "
+                    "(a 30-degree-bank turn each way at v_ref, on the estimate) and is scored "
+                    "by turn entry, steady turn-rate error, overshoot, sideslip, altitude lost "
+                    "and saturation against their goals. The starter gains are trial 0; the "
+                    "best are also flown at twice their value (the stability margin). Writes "
+                    "report.md, search.png, result.json and AIRCRAFT_tuned.toml to --out; the "
+                    "search is stored in --out/study.db, so running it again continues it.")
+    t.add_argument("aircraft", help="aircraft TOML file (e.g. from `aircraft new`)")
+    t.add_argument("--out", required=True, help="output directory (also the study's store)")
+    t.add_argument("--trials", type=int, default=40, help="trials in all (default 40)")
+    t.add_argument("--seed", type=int, default=1, help="the sampler's seed (default 1)")
+    _add_backend_args(t, "trials flown at once (default 1)")
+    t.set_defaults(func=cmd_tune)
+
+
 def _add_aircraft_parser(sub: Any) -> None:
     from helical_sil import aircraft as acm
     a = sub.add_parser("aircraft", **_HELP, help="the JSBSim models that can be flown",
@@ -642,6 +678,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.set_defaults(func=cmd_compare)
     _add_upsets_parser(sub)  # fault campaign (issue 7)
     _add_aircraft_parser(sub)
+    _add_tune_parser(sub)
     return ap
 
 
