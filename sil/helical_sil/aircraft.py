@@ -286,6 +286,36 @@ def roll_authority(model: str, v: float, altitude_m: float = DEFAULT_ALTITUDE_M)
         return abs(float(fdm["velocities/p-rad_sec"]))
 
 
+# each surface: the command, and the position properties a JSBSim FCS writes
+SURFACES = (("aileron", "fcs/aileron-cmd-norm", ("fcs/left-aileron-pos-rad",
+                                                 "fcs/right-aileron-pos-rad")),
+            ("elevator", "fcs/elevator-cmd-norm", ("fcs/elevator-pos-rad",)),
+            ("rudder", "fcs/rudder-cmd-norm", ("fcs/rudder-pos-rad",)))
+
+
+def surface_travel_deg(model: str, v: float, altitude_m: float = DEFAULT_ALTITUDE_M
+                       ) -> dict[str, float | None]:
+    """Each surface's deflection at full positive command (deg, 0.5 s after
+    the step from the trim at v), or None when the model's FCS does not
+    write the standard position property."""
+    out: dict[str, float | None] = {}
+    for name, cmd, props in SURFACES:
+        with _quiet(), _scratch_cwd():
+            fdm = _trimmed_fdm(model, v, altitude_m)
+            fdm[cmd] = 1.0
+            t_end = fdm["simulation/sim-time-sec"] + 0.5
+            while fdm["simulation/sim-time-sec"] < t_end:
+                fdm.run()
+            vals = []
+            for prop in props:
+                try:
+                    vals.append(abs(float(fdm[prop])))
+                except Exception:  # the model does not define it
+                    pass
+        out[name] = round(math.degrees(max(vals)), 1) if vals and max(vals) > 0.0 else None
+    return out
+
+
 def stability_augmentation(info: ModelInfo) -> str:
     """The model's own damper or SAS, as named in its XML (the model's file
     and the system files beside it), or ""."""
@@ -337,6 +367,7 @@ def starter(model: str, altitude_m: float = DEFAULT_ALTITUDE_M) -> dict[str, Any
     for k in ("kp_aileron", "kd_aileron"):
         gains[k] = round(gains[k] * scale, 3)
     alpha_max = alpha_limit_deg(info)
+    out["travel_deg"] = surface_travel_deg(model, v_ref, altitude_m)
     out.update(v_ref=v_ref, v_min=v_min, throttle=cruise.throttle, roll_rate=p,
                roll_scale=scale, gains=gains,
                stall_alpha_deg=round(alpha_max if alpha_max is not None
@@ -378,6 +409,9 @@ def starter_toml(s: dict[str, Any]) -> str:
               "power); v_min: the lowest trimmed speed",
               f"# roll authority at v_ref: {s['roll_rate']:.2f} rad/s after 1 s of full aileron "
               f"(c172p {C172P_ROLL_RATE_RAD_S:g}); roll gains x {s['roll_scale']:.2f}",
+              "# surface travel at full command (deg; - = not written by the model's FCS): "
+              + ", ".join(f"{k} {'-' if v is None else f'{v:g}'}"
+                          for k, v in s["travel_deg"].items()),
               "# Starter gains: the c172p's tuned set, the roll axis scaled. Tune before "
               "flying anything real.",
               f'model = "{s["model"]}"',

@@ -63,6 +63,9 @@ def test_aircraft_new_writes_a_file_the_loader_takes(tmp_path) -> None:
     assert main(["aircraft", "new", "c172p", "--out", str(out)]) == 0
     text = out.read_text()
     assert 'model = "c172p"' in text and "stability augmentation" not in text
+    # the c172p's FCS: 15 deg of aileron, 23 of elevator (down), 16 of rudder
+    assert "surface travel at full command (deg; - = not written by the model's FCS): " \
+        "aileron 15, elevator 23, rudder 16" in text
     sc = load_scenario(_scenario(tmp_path, "mine"))
     g = sc.gains
     assert 45.0 < g["v_ref"] < 56.0 and 24.0 < g["v_min"] < 30.0
