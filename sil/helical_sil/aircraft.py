@@ -361,13 +361,19 @@ def starter(model: str, altitude_m: float = DEFAULT_ALTITUDE_M) -> dict[str, Any
     cruise = at_cruise[-1] if at_cruise else pts[0]
     v_ref = round(cruise.speed_m_s, 1)
     v_min = round(max(pts[0].speed_m_s, v_ref / 32.0, 1.0), 1)
-    p = roll_authority(model, v_ref, altitude_m)
+    try:
+        p = roll_authority(model, v_ref, altitude_m)
+    except Exception:  # JSBSim did not trim again at v_ref: no measurement
+        p = 0.0
     scale = min(4.0, max(0.25, C172P_ROLL_RATE_RAD_S / p)) if p > 0.0 else 1.0
     gains = dict(STARTER_GAINS)
     for k in ("kp_aileron", "kd_aileron"):
         gains[k] = round(gains[k] * scale, 3)
     alpha_max = alpha_limit_deg(info)
-    out["travel_deg"] = surface_travel_deg(model, v_ref, altitude_m)
+    try:
+        out["travel_deg"] = surface_travel_deg(model, v_ref, altitude_m)
+    except Exception:  # JSBSim did not trim again at v_ref: no measurement
+        out["travel_deg"] = {name: None for name, _c, _p in SURFACES}
     out.update(v_ref=v_ref, v_min=v_min, throttle=cruise.throttle, roll_rate=p,
                roll_scale=scale, gains=gains,
                stall_alpha_deg=round(alpha_max if alpha_max is not None
@@ -423,6 +429,10 @@ def starter_toml(s: dict[str, Any]) -> str:
     lines += [f"{k} = {v:g}" for k, v in s["gains"].items()]
     lines += ["", "# What a run is checked against (metrics: run.envelope): the stall angle of "
               f"attack ({s['stall_alpha_source']})", "# and the fastest level trim of the sweep.",
-              "[envelope]", f"stall_alpha_deg = {s['stall_alpha_deg']:g}",
-              f"max_airspeed_m_s = {s['max_airspeed_m_s']:g}"]
+              "[envelope]"]
+    if 1.0 <= s["stall_alpha_deg"] <= 45.0:
+        lines.append(f"stall_alpha_deg = {s['stall_alpha_deg']:g}")
+    else:  # a model that trims at a negative or extreme alpha: no stall limit from it
+        lines.append(f"# stall_alpha_deg: {s['stall_alpha_deg']:g} is outside [1, 45]; not set")
+    lines.append(f"max_airspeed_m_s = {min(s['max_airspeed_m_s'], 400.0):g}")
     return "\n".join(lines) + "\n"

@@ -585,7 +585,13 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             # rectangle rule at the sim rate on the wind after each frame
             air_down += fdm["atmosphere/total-wind-down-fps"] * FT * dt_sim
             # the IMU samples the frame's state (specific force, rates)
-            imu_batch.append(model.imu(sensors_mod.read_fdm_state(fdm), t + (j + 1) * dt_sim))
+            try:
+                imu_batch.append(model.imu(sensors_mod.read_fdm_state(fdm),
+                                           t + (j + 1) * dt_sim))
+            except ValueError as e:  # NaN rates or forces: JSBSim's model diverged
+                raise SimError(f"JSBSim's state is not finite at t = "
+                               f"{fdm['simulation/sim-time-sec']:.2f} s (the model diverged): "
+                               f"{e}") from None
         north += vn * dt_ctl
         east += ve * dt_ctl
         agl = fdm["position/h-agl-ft"] * FT

@@ -125,7 +125,7 @@ def _metrics_of(m: dict[str, Any]) -> dict[str, float]:
 def cost_of(metrics: dict[str, float]) -> float:
     c = sum(metrics[k] / goal for k, goal in GOALS.items())
     c += 5.0 * metrics["surface_saturation_frac"]
-    return c if math.isfinite(c) else FAIL_COST
+    return min(c, FAIL_COST) if math.isfinite(c) else FAIL_COST
 
 
 def fly(job: tuple[str, str, dict[str, float], str | None]) -> Flight:

@@ -105,3 +105,17 @@ def test_aircraft_new_for_a_model_that_does_not_trim(tmp_path) -> None:
     assert 'NO TRIM: JSBSim trims this model at no speed of the sweep ("Trim Failed")' in text
     assert "[initial] trim = false" in text
     assert load_scenario(_scenario(tmp_path, "pa")).gains["v_ref"] == 50.0
+
+
+def test_a_model_that_diverges_is_a_clear_runtime_error(tmp_path, capsys) -> None:
+    """JSBSim's paraglider goes to NaN rates within 0.2 s of its release: the
+    run stops with exit 3 and says the model diverged (not a traceback)."""
+    (tmp_path / "aircraft").mkdir()
+    out = tmp_path / "aircraft" / "pg.toml"
+    assert main(["aircraft", "new", "paraglider", "--out", str(out)]) == 0
+    sc = _scenario(tmp_path, "pg")
+    sc.write_text(sc.read_text().replace("duration_s = 5\n",
+                                         "duration_s = 5\n[initial]\ntrim = false\n"))
+    rc = main(["run", str(sc), "--no-plots", "--out", str(tmp_path / "o")])
+    assert rc == 3
+    assert "(the model diverged)" in capsys.readouterr().err
