@@ -30,10 +30,11 @@
 #include "helical/hil_frame.h"
 
 #define HIL_PROTOCOL_VERSION                                                                       \
-    7u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
+    8u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
           5: CFG_LAW and CFG_EST laid out by the parameter table;                                  \
           6: CFG_EST ends with the guidance's rows;                                                \
-          7: CFG_ALT and CFG_SPD laid out by the parameter table */
+          7: CFG_ALT and CFG_SPD laid out by the parameter table;                                  \
+          8: CFG_LAW ends with the law's options (roll_in, kp_sideslip, vertical_fade) */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */
