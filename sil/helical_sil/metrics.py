@@ -357,6 +357,8 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
 
     if steady.any():
         out["turn_rate_rmse_deg_s"] = _f(np.sqrt(np.mean((w[steady] - cmd) ** 2)))
+        if abs(cmd) >= TURN_CHANGE_MIN_DEG_S:  # issue 17: coordination in the steady turn
+            out["steady_sideslip_rms_deg"] = _f(np.sqrt(np.mean(beta[steady] ** 2)))
         out["turn_rate_mean_deg_s"] = _f(np.mean(w[steady]))
         if abs(cmd) >= TURN_CHANGE_MIN_DEG_S:
             out["turn_rate_error_pct"] = _f(100.0 * abs(np.mean(w[steady]) - cmd) / abs(cmd))
@@ -392,6 +394,7 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
         else:
             out["bank_overshoot_deg"] = None
         out["bank_target_deg"] = _f(phi_t)
+        out["bank_entry_s"] = bank_entry_s(ts, phi, phi_t)
 
     out["altitude_change_m"] = _f(h[-1] - h[0])
     turned = psi_u[-1] - psi_u[0]
@@ -414,6 +417,49 @@ def segment_metrics(res: RunResult, seg: Segment) -> dict[str, Any]:
     if sc.modes is None:  # fault campaign (issue 7)
         out.update(fault_segment_metrics(res, seg, idx, steady, tilt_error_deg(res)))
     return out
+
+
+# --- law options (issue 17) ---
+ENTRY_FRACTION = 0.9     # entry = 90 % of the commanded change (turn rate or bank)
+NEAR_VERTICAL = 0.1      # sqrt(X^2 + Z^2) below this: the fuselage within 5.7 deg of vertical
+
+
+def bank_entry_s(ts: np.ndarray, phi_deg: np.ndarray, target_deg: float,
+                 fraction: float = ENTRY_FRACTION) -> float | None:
+    """Time (ts: from the command) until the bank first covers `fraction` of the
+    change from its first value to target_deg (wrapped, so a roll through
+    +-180 counts the short way); None if it never does. The law's side of the
+    full-aileron comparison (roll_limit.py measures the aileron's side with
+    the same definition)."""
+    if ts.size == 0:
+        return None
+    change = float(wrap_deg(target_deg - phi_deg[0]))
+    if abs(change) < 1e-9:
+        return 0.0
+    frac = np.asarray(wrap_deg(phi_deg - phi_deg[0]), dtype=float) / change
+    hit = np.nonzero(frac >= fraction)[0]
+    return _f(ts[hit[0]]) if hit.size else None
+
+
+def near_vertical_metrics(tel: dict[str, np.ndarray], dt_s: float) -> dict[str, Any]:
+    """Near a vertical fuselage (JSBSim's attitude: sqrt(X^2 + Z^2) <
+    NEAR_VERTICAL), how much the law's aileron moved: near_vertical_s (time
+    spent there) and near_vertical_aileron_tv_per_s (the total variation of
+    the law's aileron command per second there: a noise-driven +-1
+    bang-bang gives up to 2 x the control rate, a steady command 0).
+    Absent when the run never comes near the vertical."""
+    xz = np.hypot(tel["dcm_x"], tel["dcm_z"])
+    near = xz < NEAR_VERTICAL
+    if not near.any():
+        return {}
+    da = np.abs(np.diff(tel["law_aileron"]))
+    both = near[1:] & near[:-1]
+    t_near = float(np.count_nonzero(near)) * dt_s
+    tv = float(np.sum(da[both]))
+    return {"near_vertical_s": t_near,
+            "near_vertical_aileron_tv_per_s": _f(tv / max(float(np.count_nonzero(both)) * dt_s,
+                                                          dt_s))}
+# --- end law options ---
 
 
 def run_metrics(res: RunResult) -> dict[str, Any]:
@@ -443,6 +489,7 @@ def run_metrics(res: RunResult) -> dict[str, Any]:
         run.update(nav_metrics(res, np.ones(h.size, dtype=bool)))
         run.update(failsafe_metrics(res))
     run.update(envelope_metrics(res))
+    run.update(near_vertical_metrics(tel, 1.0 / sc.control_rate_hz))  # issue 17
     if res.end_reason is not None:
         run["end_reason"] = res.end_reason
         run["ground_contact_s"] = res.end_t_s

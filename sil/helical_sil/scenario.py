@@ -85,6 +85,8 @@ SEGMENT_METRICS = (
     "altitude_error_net_of_air_max_m", "air_down_m", "wind_down_max_m_s", "wind_up_max_m_s",
     # --- end fault campaign ---
     *ESTIMATOR_METRICS,
+    # law options (issue 17)
+    "bank_entry_s", "steady_sideslip_rms_deg",
 )
 # metrics computed only with [metrics] climb_capability_m_s
 NEEDS_CLIMB_CAPABILITY = ("unavoidable_sink_max_m", "altitude_error_net_of_air_max_m",
@@ -101,6 +103,8 @@ RUN_METRICS = (
     "airspeed_min_m_s", "airspeed_max_m_s", "min_altitude_net_of_air_m",
     # --- end fault campaign ---
     *ESTIMATOR_METRICS,
+    # law options (issue 17)
+    "near_vertical_s", "near_vertical_aileron_tv_per_s",
 )
 
 # --- flight modes (issue 5): [modes], [nav], [fbw], [aoa], [[waypoint]], [[rc]] ---
