@@ -419,9 +419,15 @@ def cmd_upsets(args: argparse.Namespace) -> int:
         raise UsageError("--jobs must be at least 1")
     for ac in args.aircraft:  # exit 2 before the output folder is made
         load_aircraft(ac, [DEFAULT_AIRCRAFT_DIR], Path("upsets"), "--aircraft")
-    out = prepare_out(args.out, ["summary.md", "summary.json", *(ac + "/" for ac in args.aircraft)])
+    from helical_sil.options import OptionsError, parse_set
     try:
-        known = upsets.parse_known(args.known_failures, args.aircraft, args.count)
+        overrides = parse_set(args.set, "--set")
+    except OptionsError as e:
+        raise UsageError(str(e)) from None
+    out = prepare_out(args.out, ["summary.md", "summary.json", *(ac + "/" for ac in args.aircraft)])
+    total = len(upsets.upset_list(args.aircraft[0], args.count, args.seed, args.grid))
+    try:
+        known = upsets.parse_known(args.known_failures, args.aircraft, total)
     except ValueError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
@@ -430,7 +436,7 @@ def cmd_upsets(args: argparse.Namespace) -> int:
         altitude_m=args.altitude_m, duration_s=args.duration_s, floor_m=args.floor_m,
         jobs=args.jobs, plots=args.plots, known_failures=known,
         pitch_mode=args.pitch_mode, attitude=args.attitude, backend=args.backend,
-        address=args.address)
+        address=args.address, grid=args.grid, overrides=overrides)
     print(table)
     print(f"wrote {out.resolve()} (summary.md, summary.json, one folder and "
           "scenario file per upset)")
@@ -487,6 +493,13 @@ def _add_upsets_parser(sub: Any) -> None:
     u.add_argument("--known-failures", nargs="*", default=[], metavar="AIRCRAFT:INDEX",
                    help="upsets failing on a known library defect: reported as failures, "
                         "not counted in the exit status; exit 1 if one of them passes")
+    u.add_argument("--grid", choices=upsets.GRIDS, default="random",
+                   help="random: COUNT seeded upsets (default); vertical: the near-vertical "
+                        "grid (pitch +-90 and +-85 deg, roll 0/90/180/-90, lowest and highest "
+                        "speed: 32 per aircraft; issue 17); both: the random ones, then the grid")
+    u.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE",
+                   help="law or guidance rows of the parameter table for every upset "
+                        "(written into each scenario file), e.g. vertical_fade=0.1")
     u.set_defaults(func=cmd_upsets)
 # --- end fault campaign ---
 
@@ -616,6 +629,120 @@ def _add_aircraft_parser(sub: Any) -> None:
     new.set_defaults(func=cmd_aircraft_new)
 
 
+# --- law options (issue 17) ---
+def cmd_options(args: argparse.Namespace) -> int:
+    """The law's options side by side: a suite of scenarios (SCENARIO_DIR or
+    files) or the standard manoeuvres of aircraft files (--aircraft)."""
+    import shlex
+
+    from tqdm import tqdm
+
+    from helical_sil import options as opt
+    if args.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    try:
+        base = opt.parse_set(args.set, "--set")
+        on = {k: v for k, _, v in opt.OPTIONS}
+        on.update(opt.parse_set(args.on, "--on"))
+        unknown = [k for k in on if k not in opt.OPTION_NAMES]
+        if unknown:
+            raise opt.OptionsError(f"--on {unknown[0]}: not an option (options: "
+                                   f"{', '.join(opt.OPTION_NAMES)})")
+        combo = args.combo if args.combo is not None else list(opt.OPTION_NAMES)
+        bad = [k for k in combo if k not in opt.OPTION_NAMES]
+        if bad:
+            raise opt.OptionsError(f"--combo {bad[0]}: not an option (options: "
+                                   f"{', '.join(opt.OPTION_NAMES)})")
+    except opt.OptionsError as e:
+        raise UsageError(str(e)) from None
+    if bool(args.scenarios) == bool(args.aircraft):
+        raise UsageError("give scenarios (a folder or files) or --aircraft FILE..., not both")
+    out = prepare_out(args.out, ["table.md", "table.csv", "options.png", "result.json"])
+    rows: dict[str, str] = {}
+    if args.aircraft:
+        files = []
+        for a in args.aircraft:
+            p = Path(a)
+            if not p.is_file():
+                from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR
+                p = DEFAULT_AIRCRAFT_DIR / f"{a}.toml"
+            if not p.is_file():
+                raise UsageError(f"--aircraft {a}: neither a file nor an aircraft of "
+                                 "sil/scenarios/aircraft")
+            files.append(p)
+        rows = opt.manoeuvre_rows(files, out)
+        title = f"Law options: the standard manoeuvres of {len(rows)} aircraft"
+    else:
+        for a in args.scenarios:
+            p = Path(a)
+            for f in (sorted(p.glob("*.toml")) if p.is_dir() else [p]):
+                if args.only and f.stem not in args.only:
+                    continue
+                rows[f.stem] = str(f)
+        if not rows:
+            raise UsageError("no scenario files")
+        title = f"Law options: {len(rows)} scenarios"
+    for name, f in rows.items():  # exit 2 before anything is flown
+        load_scenario(f)
+    bar = tqdm(total=0, unit="run", desc="options", file=sys.stderr)
+
+    def progress(k: int, n: int, what: str) -> None:
+        bar.total = n
+        bar.n = k
+        bar.set_postfix_str(what)
+        bar.refresh()
+
+    cmdline = "python -m helical_sil " + " ".join(shlex.quote(x) for x in sys.argv[1:]) \
+        if sys.argv and sys.argv[0].endswith(("__main__.py", "helical_sil")) else \
+        "python -m helical_sil options ..."
+    camp = opt.Campaign(rows=rows, on_values=on, combo=combo, base=base,
+                        margin=not args.no_margin, recommend=not args.no_recommend)
+    r = opt.run(camp, out, args.jobs, args.board_lib, args.backend, args.address, title,
+                cmdline, progress)
+    bar.close()
+    print((out / "table.md").read_text())
+    print(f"recommended: {', '.join(r['recommended']) or 'none'}")
+    print(f"wrote {out.resolve()} (table.md, table.csv, options.png, result.json)")
+    return 0
+
+
+def _add_options_parser(sub: Any) -> None:
+    from helical_sil import options as opt
+    o = sub.add_parser(
+        "options", **_HELP, help="the law's options (issue 17) side by side",
+        description="Fly every row (the scenarios of a folder, or the standard manoeuvres of "
+                    "each --aircraft file: a 30-degree-bank turn each way at v_ref) with the "
+                    "seed's law (every option off, turn_trim 0 too), each option alone, and "
+                    "their combination, each also at twice the tuned gains (stability "
+                    "margin); then the options that help somewhere and hurt nowhere together "
+                    "('recommended'). Metrics: turn entry over the full-aileron limit "
+                    "(measured per row from its trim), steady turn-rate error, steady "
+                    "sideslip RMS, bank overshoot, altitude lost in the rolls, turn-rate RMS "
+                    "at 2x. Writes table.md, table.csv, options.png, result.json. Options: "
+                    + ", ".join(f"{k} ({w}, on = {v:g})" for k, w, v in opt.OPTIONS) + ".")
+    o.add_argument("scenarios", nargs="*", help="scenario folder(s) or files")
+    o.add_argument("--aircraft", nargs="+", default=None, metavar="FILE|NAME",
+                   help="aircraft files (e.g. tune's *_tuned.toml) or names of "
+                        "sil/scenarios/aircraft: fly the standard manoeuvres of each")
+    o.add_argument("--only", nargs="*", help="scenario names (file stems) to fly")
+    o.add_argument("--out", required=True, help="output directory")
+    o.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE",
+                   help="law or guidance rows of the parameter table for every variant "
+                        "(table units), e.g. turn_trim_tau=5")
+    o.add_argument("--on", nargs="*", default=[], metavar="OPTION=VALUE",
+                   help="the value that turns an option on (defaults: "
+                        + ", ".join(f"{k}={v:g}" for k, _, v in opt.OPTIONS) + ")")
+    o.add_argument("--combo", nargs="*", default=None, metavar="OPTION",
+                   help="the options of the 'combo' variant (default: all)")
+    o.add_argument("--no-margin", action="store_true",
+                   help="skip the flights at twice the gains")
+    o.add_argument("--no-recommend", action="store_true",
+                   help="skip the second pass (the recommended combination)")
+    _add_backend_args(o, "parallel runs (default 1)")
+    o.set_defaults(func=cmd_options)
+# --- end law options ---
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="python -m helical_sil", **_HELP,
@@ -679,6 +806,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_upsets_parser(sub)  # fault campaign (issue 7)
     _add_aircraft_parser(sub)
     _add_tune_parser(sub)
+    _add_options_parser(sub)  # issue 17
     return ap
 
 

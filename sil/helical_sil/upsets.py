@@ -70,6 +70,10 @@ class UpsetResult:
     passed: bool
     scenario: str
     known: bool = False  # listed in --known-failures
+    # issue 17: near a vertical fuselage, the law aileron's total variation per
+    # second (metrics.near_vertical_metrics; None: the run never came near it)
+    near_vertical_s: float | None = None
+    aileron_tv_near_vertical_per_s: float | None = None
 
 
 def parse_known(items: list[str], aircraft: list[str], count: int) -> list[str]:
@@ -105,10 +109,57 @@ def generate(aircraft: str, count: int, seed: int,
     return out
 
 
+# --- the vertical grid (issue 17, item 4) ---
+VERTICAL_PITCH_DEG = (90.0, 85.0, -85.0, -90.0)
+VERTICAL_ROLL_DEG = (0.0, 90.0, 180.0, -90.0)
+GRIDS = ("random", "vertical", "both")
+
+
+def vertical_grid(aircraft: str, speed_range: tuple[float, float] | None = None) -> list[Upset]:
+    """Near-vertical climbs and dives: pitch +-90 and +-85 deg, each with the
+    wings at 0, 90, 180 and -90 deg of roll, at the lowest and the highest
+    speed of the campaign, no body rates (32 upsets; heading 0). At +-90 deg
+    the fuselage is vertical: sqrt(X^2 + Z^2) = 0, where Eq. 9's roll sign is
+    set by noise (the law option vertical_fade)."""
+    lo, hi = speed_range or SPEED_RANGE_M_S.get(aircraft, (0.5, 1.0))
+    return [Upset(roll, pitch, 0.0, v) for pitch in VERTICAL_PITCH_DEG
+            for roll in VERTICAL_ROLL_DEG for v in (lo, hi)]
+
+
+def upset_list(aircraft: str, count: int, seed: int, grid: str = "random",
+               speed_range: tuple[float, float] | None = None) -> list[Upset]:
+    """The campaign's upsets: the random ones (count), the vertical grid, or
+    both (the random ones first: their indices do not change)."""
+    if grid not in GRIDS:
+        raise ValueError(f"grid {grid!r}: one of {', '.join(GRIDS)}")
+    out = generate(aircraft, count, seed, speed_range) if grid != "vertical" else []
+    if grid != "random":
+        out += vertical_grid(aircraft, speed_range)
+    return out
+
+
+def overrides_toml(overrides: dict[str, float] | None) -> str:
+    """[gains] and [guidance] tables of law / guidance rows (the campaign's --set)."""
+    if not overrides:
+        return ""
+    from helical_sil.options import row_of
+    law = {k: v for k, v in overrides.items() if row_of(k)[0] == "law"}
+    gd = {k: v for k, v in overrides.items() if row_of(k)[0] == "guidance"}
+    text = ""
+    if law:
+        text += "\n[gains]\n" + "".join(f"{k} = {v!r}\n" for k, v in law.items())
+    if gd:
+        text += "\n[guidance]\n" + "".join(f"{k} = {v!r}\n" for k, v in gd.items())
+    return text
+# --- end vertical grid ---
+
+
 def scenario_toml(aircraft: str, up: Upset, index: int, seed: int, altitude_m: float,
                   duration_s: float, floor_m: float, cruise_m_s: float,
-                  pitch_mode: str = "earth_frame", attitude: str = "estimate") -> str:
-    """The scenario file of one upset (flown by `run` like any other)."""
+                  pitch_mode: str = "earth_frame", attitude: str = "estimate",
+                  overrides: dict[str, float] | None = None) -> str:
+    """The scenario file of one upset (flown by `run` like any other);
+    overrides: law or guidance rows (--set)."""
     return f"""# Upset {index} of the {aircraft} campaign (python -m helical_sil upsets, seed {seed}).
 # Trimmed at {altitude_m:g} m / {cruise_m_s:g} m/s, then released untrimmed at [upset];
 # commanded to level upright flight on the altitude and airspeed holds.
@@ -119,7 +170,7 @@ seed = {seed}
 
 [attitude]
 source = "{attitude}"
-
+{overrides_toml(overrides)}
 [initial]
 altitude_m = {altitude_m:g}
 airspeed_m_s = {cruise_m_s:g}
@@ -167,7 +218,9 @@ def _result(i: int, aircraft: str, up: Upset, m: dict[str, Any], path: Path,
         recovery_time_s=rec, altitude_loss_m=max(0.0, altitude_m - run["min_altitude_m"]),
         min_altitude_m=run["min_altitude_m"], tilt_error_end_deg=run.get("tilt_error_end_deg"),
         airspeed_min_m_s=run["airspeed_min_m_s"], airspeed_max_m_s=run["airspeed_max_m_s"],
-        passed=bool(m["passed"]), scenario=str(path))
+        passed=bool(m["passed"]), scenario=str(path),
+        near_vertical_s=run.get("near_vertical_s"),
+        aileron_tv_near_vertical_per_s=run.get("near_vertical_aileron_tv_per_s"))
 
 
 def summarize(results: list[UpsetResult], altitude_m: float) -> dict[str, Any]:
@@ -191,6 +244,9 @@ def summarize(results: list[UpsetResult], altitude_m: float) -> dict[str, Any]:
         "worst_loss_upset": worst_h.index if worst_h else None,
         "min_altitude_m": min(r.min_altitude_m for r in results) if results else None,
         "start_altitude_m": altitude_m,
+        "aileron_tv_near_vertical_worst_per_s": max(
+            (r.aileron_tv_near_vertical_per_s for r in results
+             if r.aileron_tv_near_vertical_per_s is not None), default=None),
     }
 
 
@@ -201,7 +257,7 @@ def _fmt(v: float | None, f: str = "{:.1f}") -> str:
 def summary_table(summaries: dict[str, dict[str, Any]]) -> str:
     heads = ("aircraft", "upsets", "recovered", "fraction", "worst t s", "median t s",
              "worst h loss m", "worst h loss m (recovered)", "lowest h m", "start h m",
-             "result")
+             "ail TV/s near vertical (worst)", "result")
     rows = []
     for ac, s in summaries.items():
         rows.append((ac, str(s["count"]), str(s["recovered"]),
@@ -211,6 +267,7 @@ def summary_table(summaries: dict[str, dict[str, Any]]) -> str:
                      _fmt(s["recovery_time_median_s"]), _fmt(s["altitude_loss_worst_m"]),
                      _fmt(s["altitude_loss_worst_recovered_m"]),
                      _fmt(s["min_altitude_m"], "{:.0f}"), f"{s['start_altitude_m']:g}",
+                     _fmt(s.get("aileron_tv_near_vertical_worst_per_s"), "{:.2f}"),
                      "PASS" if s["passed"] == s["count"] else
                      f"FAIL {s['count'] - s['passed']}" + (f" ({s['known']} known)"
                                                            if s.get("known") else "")))
@@ -219,7 +276,8 @@ def summary_table(summaries: dict[str, dict[str, Any]]) -> str:
 
 def detail_table(results: list[UpsetResult]) -> str:
     heads = ("aircraft", "#", "roll°", "pitch°", "CAS m/s", "p,q,r °/s", "t rec s",
-             "h loss m", "V min–max m/s", "tilt end°", "result")
+             "h loss m", "V min–max m/s", "tilt end°", "near vert s", "ail TV/s",
+             "result")
     rows = []
     for r in results:
         u = r.upset
@@ -228,7 +286,8 @@ def detail_table(results: list[UpsetResult]) -> str:
                      f"{u['p_deg_s']:.0f},{u['q_deg_s']:.0f},{u['r_deg_s']:.0f}",
                      _fmt(r.recovery_time_s, "{:.2f}"), _fmt(r.altitude_loss_m),
                      f"{r.airspeed_min_m_s:.0f}–{r.airspeed_max_m_s:.0f}",
-                     _fmt(r.tilt_error_end_deg),
+                     _fmt(r.tilt_error_end_deg), _fmt(r.near_vertical_s, "{:.2f}"),
+                     _fmt(r.aileron_tv_near_vertical_per_s, "{:.2f}"),
                      "PASS" if r.passed else ("FAIL (known)" if r.known else "FAIL")))
     return _md(heads, rows)
 
@@ -248,7 +307,8 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
                  jobs: int = 1, plots: bool = False,
                  known_failures: list[str] | None = None,
                  pitch_mode: str = "earth_frame", attitude: str = "estimate",
-                 backend: str = "local", address: str | None = None) -> tuple[int, str]:
+                 backend: str = "local", address: str | None = None, grid: str = "random",
+                 overrides: dict[str, float] | None = None) -> tuple[int, str]:
     """Write the scenario files, fly them, write summary.md / summary.json.
     known_failures ("AIRCRAFT:INDEX") are upsets that fail on a known library
     defect: still failures in every table and fraction, but they do not count
@@ -261,10 +321,10 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
         a = load_aircraft(ac, [DEFAULT_AIRCRAFT_DIR], Path("upsets"), "--aircraft")
         d = out / ac
         d.mkdir(parents=True, exist_ok=True)
-        for i, up in enumerate(generate(ac, count, seed)):
+        for i, up in enumerate(upset_list(ac, count, seed, grid)):
             p = d / f"upset_{i:03d}.toml"
             p.write_text(scenario_toml(ac, up, i, seed, altitude_m, duration_s, floor_m,
-                                       a.airspeed_m_s, pitch_mode, attitude))
+                                       a.airspeed_m_s, pitch_mode, attitude, overrides))
             jobs_list.append((str(p), str(d / f"upset_{i:03d}"), board_lib, plots))
             meta.append((i, ac, up, p))
     n = len(jobs_list)
@@ -286,15 +346,18 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
     failed = [r for r in results if not r.passed and not r.known]
     xpass = [r for r in results if r.passed and r.known]
     known = [r for r in results if not r.passed and r.known]
-    text = (f"# Upset recovery (seed {seed}, {count} per aircraft, start {altitude_m:g} m, "
-            f"floor {floor_m:g} m above the ground, {pitch_mode} pitch)\n\n{table}\n\n"
+    per = len(results) // max(1, len(aircraft))
+    extra = "" if not overrides else ", " + ", ".join(f"{k} = {v:g}" for k, v in overrides.items())
+    text = (f"# Upset recovery (seed {seed}, {per} per aircraft ({grid}), start {altitude_m:g} m, "
+            f"floor {floor_m:g} m above the ground, {pitch_mode} pitch{extra})\n\n{table}\n\n"
             f"Recovered: tilt within 10° of the law's target tilt to the end of the "
             f"{duration_s:g} s run (≥ 5 s); time from release; median over the recovered "
             f"upsets; altitude loss = start altitude − lowest altitude of the run.\n\n"
             f"## Every upset\n\n{detail_table(results)}\n")
     (out / "summary.md").write_text(text)
     with (out / "summary.json").open("w") as f:
-        json.dump({"seed": seed, "count": count, "altitude_m": altitude_m,
+        json.dump({"seed": seed, "count": count, "grid": grid, "overrides": overrides or {},
+                   "altitude_m": altitude_m,
                    "pitch_mode": pitch_mode, "known_failures": sorted(known_set),
                    "duration_s": duration_s, "floor_m": floor_m, "aircraft": summaries,
                    "upsets": [asdict(r) for r in results]}, f, indent=2, allow_nan=False)
