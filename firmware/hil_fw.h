@@ -34,7 +34,8 @@
           5: CFG_LAW and CFG_EST laid out by the parameter table;                                  \
           6: CFG_EST ends with the guidance's rows;                                                \
           7: CFG_ALT and CFG_SPD laid out by the parameter table;                                  \
-          8: CFG_LAW ends with the law's options (roll_in, kp_sideslip, vertical_fade) */
+          8: CFG_LAW ends with the law's options (roll_in, roll_in_rate_max,                       \
+             kp_sideslip, vertical_fade) */
 
 /* Message ids (docs/hil-protocol.md): host -> firmware */
 #define HIL_ID_HELLO      0x01u /* empty: answered by READY */

@@ -25,6 +25,7 @@
 
 #include "helical/helical_turn.h"
 
+#include "ht_options.h"
 #include "q_inline.h"
 
 /* 2^35 * 32 / 980.665: (Q11 rad/s * cm/s) -> Q16 ratio with a shift of 35,
@@ -187,6 +188,7 @@ static int32_t steep_pitch_q30(q16_t pitch_q16, int32_t *c2)
 typedef struct {
     int32_t x, y, z; /* Q30 */
     int32_t t;       /* Q30 */
+    int32_t c1;      /* Q30: 1/sqrt(1 + r^2), for the roll-in option */
 } target_t;
 
 static target_t target_tilt(int32_t ratio_q28, q16_t pitch_q16, uint8_t inverted)
@@ -208,6 +210,7 @@ static target_t target_tilt(int32_t ratio_q28, q16_t pitch_q16, uint8_t inverted
     tg.x = (inverted != 0u) ? -x : x;
     tg.z = (inverted != 0u) ? -z : z;
     tg.t = c2;
+    tg.c1 = c1;
     return tg;
 }
 
@@ -383,9 +386,26 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         rate_d[i] = qi_mul32x16_fit(turn.omega_q26, row[i], 15u); /* <= 16 * 2 * 2^25 = 2^30 */
     }
 
+    /* Option roll-in: the target's own bank rate joins the roll axis' target
+     * rate (feed-forward and damping); none while the tilt limit holds the
+     * target. |rate_d[1] + roll_in| <= 2^30 + 2^28 in Q25. */
+    int32_t roll_in_q25 = 0;
+    if (ctl->roll_in != 0u && (flags & (uint8_t)HT_F_TILT_LIMITED) == 0u) {
+        roll_in_q25 = ht_opt_roll_in_q25(ctl, in->turn_accel_rad_s2, s_cm_s, tg.c1, &flags);
+    }
+
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
     int32_t e[3], roll_dot, roll_cross, pe = 0;
     e[1] = roll_error(in, &tg, &roll_dot, &roll_cross, &flags);
+    /* Option vertical fade: the roll error (Eq. 9's +/-1 near a vertical
+     * fuselage) times min(1, sqrt(X^2 + Z^2) / vertical_fade). */
+    int32_t fade_q30 = Q30_ONE;
+    if (ctl->fade2_q28 != 0u) {
+        fade_q30 = ht_opt_fade_q30(ctl, in->x, in->z, &flags);
+        if (fade_q30 < Q30_ONE) {
+            e[1] = qi_mul32_fit(e[1], fade_q30, 30u); /* |.| <= 2^29 */
+        }
+    }
     if (ctl->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) {
         pitch_tilt_cross(in, &tg, e);
     } else {
@@ -401,9 +421,15 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
         qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0])),
         &flags);
     o->aileron = surface_from_q20(
-        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
-    o->rudder = surface_from_q20(axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]),
-                                 &flags);
+        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1] + roll_in_q25, in->gyro_rad_s[1]), &flags);
+    /* Option sideslip: rudder toward zero lateral specific force. */
+    int32_t rudder_q20 = axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]);
+    int32_t sideslip_q20 = 0;
+    if (ctl->kp_sideslip != 0) {
+        sideslip_q20 = ht_opt_sideslip_q20(ctl, in->accel_lat_g);
+        rudder_q20 = qi_add_sat32(rudder_q20, sideslip_q20);
+    }
+    o->rudder = surface_from_q20(rudder_q20, &flags);
 
     o->turn_rate_used_rad_s = q11_from_q26_fit(turn.omega_q26);
     o->tilt_ratio = turn.ratio_q16;
@@ -419,5 +445,8 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     o->pitch_error = q14_from_q28(pe);
     o->pitch_body_x = q14_from_q28(e[0]);
     o->pitch_body_z = q14_from_q28(e[2]);
+    o->roll_in_rate_rad_s = q11_from_q25(roll_in_q25);
+    o->roll_fade = q14_from_q30_fit(fade_q30);
+    o->sideslip_rudder = qi_sat16(qi_rshift_round(sideslip_q20, 6u));
     o->flags = flags;
 }

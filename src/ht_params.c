@@ -90,6 +90,25 @@ static ht_param_id_t first_bad_param(const ht_params_t *p)
     return HT_P_NONE;
 }
 
+/* The options' constants (src/ht_options.c); each option is off at 0. */
+static void options_init(ht_controller_t *ctl, const ht_params_t *params)
+{
+    ctl->roll_in = params->roll_in;
+    ctl->roll_in_max_q25 = params->roll_in_rate_max_rad_s * 512; /* <= 2^28 */
+    ctl->kp_sideslip = params->kp_sideslip;
+    const q16_t fade = params->vertical_fade; /* [0, 2^16] */
+    ctl->vertical_fade = fade;
+    if (fade != 0) {
+        /* ceil(fade^2 / 16): X^2 + Z^2 (Q28) >= it exactly when
+         * sqrt(X^2 + Z^2) >= fade; 1.0 itself (2^32 / 16) apart */
+        const uint32_t f = (uint32_t)fade;
+        ctl->fade2_q28 = (f >= 65536u) ? 0x10000000u : (((f * f) + 15u) >> 4);
+        unsigned e = 0u;
+        ctl->fade_inv_q30 = q_recip_q30(fade, &e); /* 1/fade_q16 = inv * 2^-(30 + e), e <= 16 */
+        ctl->fade_inv_exp = (uint8_t)e;
+    }
+}
+
 ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id_t *bad_field)
 {
     if (bad_field != NULL) {
@@ -124,6 +143,7 @@ ht_status_t ht_init(ht_controller_t *ctl, const ht_params_t *params, ht_param_id
     ctl->pitch_mode = params->pitch_mode;
     ctl->max_tilt = params->max_tilt;
     ctl->max_tilt_g_q18 = q_mul32(params->max_tilt, HT_G_CM_S2_Q20, 18); /* <= 2.06e9 */
+    options_init(ctl, params);
     ctl->ready = 1u;
     return HT_OK;
 }

@@ -154,7 +154,7 @@ static void test_guided_path_is_the_library_chain(void)
     const q14_t thr = ht_speed_hold_step(&cfg.modes.speed, &spd, 2200, 2500, pitch);
     ht_controller_t ctl;
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&ctl, &cfg.law, NULL));
-    const ht_input_t li = {-5000, 0, 15600, Q11_FROM_REAL(0.3), pitch, 2500, {0, 300, 0}, 0u};
+    const ht_input_t li = {-5000, 0, 15600, Q11_FROM_REAL(0.3), pitch, 2500, {0, 300, 0}, 0u, 0, 0};
     /* ht_step writes the fields, not the padding: zero it as the firmware's
      * own output is, so that the whole-struct comparison below compares
      * what the law wrote (uninitialised padding made it depend on the stack) */

@@ -197,11 +197,13 @@ static void send_config(const sil_config_t *c, int32_t kp_aileron_q16)
     put32(&p[45], q16(c->law[HT_P_MAX_TILT - 1]));
     p[49] = (uint8_t)llround(c->law[HT_P_PITCH_MODE - 1]);
     /* protocol 8: the law's options (docs/control-law.md "Extensions beyond
-     * the seed"): u8 roll_in (50), i32 Q16 kp_sideslip (51), vertical_fade (55) */
+     * the seed"): u8 roll_in (50), i32 Q16 roll_in_rate_max_rad_s (51),
+     * kp_sideslip (55), vertical_fade (59) */
     p[50] = (uint8_t)llround(c->law[HT_P_ROLL_IN - 1]);
-    put32(&p[51], q16(c->law[HT_P_KP_SIDESLIP - 1]));
-    put32(&p[55], q16(c->law[HT_P_VERTICAL_FADE - 1]));
-    TEST_ASSERT_EQUAL_UINT8(59u, HIL_LEN_CFG_LAW);
+    put32(&p[51], q16(c->law[HT_P_ROLL_IN_RATE_MAX - 1]));
+    put32(&p[55], q16(c->law[HT_P_KP_SIDESLIP - 1]));
+    put32(&p[59], q16(c->law[HT_P_VERTICAL_FADE - 1]));
+    TEST_ASSERT_EQUAL_UINT8(63u, HIL_LEN_CFG_LAW);
     push_frame(HIL_ID_CFG_LAW, p, HIL_LEN_CFG_LAW);
 
     /* protocol 7: the altitude hold's rows (docs/hil-protocol.md): five i32
@@ -885,11 +887,12 @@ static void test_cfg_frames_follow_the_table(void)
     l.max_tilt = 0x0B0C0D0E;
     l.pitch_mode = 0xA2u;
     l.roll_in = 0xA3u;
+    l.roll_in_rate_max_rad_s = 0x3A3B3C3D;
     l.kp_sideslip = 0x1A1B1C1D;
     l.vertical_fade = -0x2A2B2C2D;
     memset(p, 0xEE, sizeof p);
     hil_cfg_law_write(p, &l);
-    TEST_ASSERT_EQUAL_UINT8(59u, HIL_LEN_CFG_LAW);
+    TEST_ASSERT_EQUAL_UINT8(63u, HIL_LEN_CFG_LAW);
     for (int i = 0; i < 9; ++i) {
         TEST_ASSERT_EQUAL_INT32(0x01010101 * (i + 1), hil_get_i32(&p[4 * i]));
     }
@@ -899,9 +902,10 @@ static void test_cfg_frames_follow_the_table(void)
     TEST_ASSERT_EQUAL_INT32(0x0B0C0D0E, hil_get_i32(&p[45]));
     TEST_ASSERT_EQUAL_HEX8(0xA2u, p[49]);
     TEST_ASSERT_EQUAL_HEX8(0xA3u, p[50]);
-    TEST_ASSERT_EQUAL_INT32(0x1A1B1C1D, hil_get_i32(&p[51]));
-    TEST_ASSERT_EQUAL_INT32(-0x2A2B2C2D, hil_get_i32(&p[55]));
-    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[59]); /* nothing written beyond the frame */
+    TEST_ASSERT_EQUAL_INT32(0x3A3B3C3D, hil_get_i32(&p[51]));
+    TEST_ASSERT_EQUAL_INT32(0x1A1B1C1D, hil_get_i32(&p[55]));
+    TEST_ASSERT_EQUAL_INT32(-0x2A2B2C2D, hil_get_i32(&p[59]));
+    TEST_ASSERT_EQUAL_HEX8(0xEEu, p[63]); /* nothing written beyond the frame */
     ht_params_t back;
     memset(&back, 0, sizeof back);
     hil_cfg_law_parse(p, &back);

@@ -52,12 +52,13 @@ typedef enum {
  * each axis, kff * v_ref / v_min + kd * s_p,max (s_p,max = v_ref / v_min with
  * the schedule, 1 without), which multiplies every error of the target rate.
  */
-#define HT_GAIN_MAX_Q16       (64 * Q16_ONE) /* every kp, kff, kd in [0, 64] */
-#define HT_V_MIN_LOWEST_CM_S  100            /* v_min in [1 m/s, v_ref] */
-#define HT_V_REF_MAX_CM_S     32767          /* v_ref in [v_min, 327.67 m/s] */
-#define HT_SCALE_MAX          32             /* v_ref <= 32 * v_min */
-#define HT_RATE_GAIN_MAX      512            /* per axis, command per rad/s */
-#define HT_MAX_TILT_LIMIT_Q16 (8 * Q16_ONE)  /* max_tilt in (0, 8] */
+#define HT_GAIN_MAX_Q16           (64 * Q16_ONE) /* every kp, kff, kd in [0, 64] */
+#define HT_V_MIN_LOWEST_CM_S      100            /* v_min in [1 m/s, v_ref] */
+#define HT_V_REF_MAX_CM_S         32767          /* v_ref in [v_min, 327.67 m/s] */
+#define HT_SCALE_MAX              32             /* v_ref <= 32 * v_min */
+#define HT_RATE_GAIN_MAX          512            /* per axis, command per rad/s */
+#define HT_MAX_TILT_LIMIT_Q16     (8 * Q16_ONE)  /* max_tilt in (0, 8] */
+#define HT_ROLL_IN_RATE_LIMIT_Q16 (8 * Q16_ONE)  /* roll_in_rate_max in [0, 8] rad/s */
 
 /*
  * Parameters, in physical units as integers, so that a board can hold them in
@@ -73,6 +74,12 @@ typedef enum {
  *   uint8_t schedule;    1: kp, kd also scaled by v_ref / S
  *   q16_t max_tilt;      limit on |turn_rate * S / g|, (0, 8]
  *   uint8_t pitch_mode;  ht_pitch_mode_t
+ * and the options beyond the seed (docs/control-law.md "Extensions beyond
+ * the seed"), each off by default, the law then bit for bit the seed's:
+ *   uint8_t roll_in;                1: the target bank rate joins the roll target rate
+ *   q16_t roll_in_rate_max_rad_s;   its bound, [0, 8] rad/s
+ *   q16_t kp_sideslip;              rudder per g of lateral specific force, [0, 64]
+ *   q16_t vertical_fade;            roll authority fade below sqrt(X^2 + Z^2) = this, [0, 1]
  */
 typedef struct {
     HT_PARAMS_LAW(HT_PARAM_X_FIELD)
@@ -125,6 +132,15 @@ typedef struct {
     /* max_tilt * g in Q18 of (rad/s)*(cm/s), below 2^31: when the tilt limit
      * clamps, the turn rate used is max_tilt_g_q18 / S_cm_s. */
     int32_t max_tilt_g_q18;
+    /* the options (src/ht_options.c): off when roll_in, kp_sideslip,
+     * vertical_fade are 0 */
+    uint8_t roll_in;
+    int32_t roll_in_max_q25; /* roll_in_rate_max in Q25 rad/s, <= 2^28 */
+    q16_t kp_sideslip;       /* Q16 per g */
+    q16_t vertical_fade;     /* Q16 */
+    uint32_t fade2_q28;      /* vertical_fade^2 in Q28 (0: off) */
+    int32_t fade_inv_q30;    /* 1 / vertical_fade = fade_inv_q30 * 2^(16 - 30 - fade_inv_exp) */
+    uint8_t fade_inv_exp;
     uint8_t ready; /* 1 after a successful ht_init */
 } ht_controller_t;
 
@@ -143,6 +159,13 @@ typedef struct {
     int16_t airspeed_cm_s; /* measured airspeed; anything below v_min is floored */
     q11_t gyro_rad_s[3];   /* measured body rates about X, Y, Z */
     uint8_t inverted;      /* nonzero: fly inverted */
+    /* Inputs of the options (read only when the option is on; zero them):
+     * roll_in: the rate of change of the commanded turn rate, + = the turn
+     * rate increasing to the right; kp_sideslip: the lateral specific force,
+     * the accelerometer's body X component (+ = toward the left wing),
+     * saturating at +/-2 g. */
+    q11_t turn_accel_rad_s2;
+    q14_t accel_lat_g;
 } ht_input_t;
 
 /* Flags describing which branch of the law a step took. */
@@ -152,7 +175,9 @@ enum ht_step_flag {
     HT_F_ROLL_BEYOND_90 = 1u << 2,    /* roll_dot <= 0: roll error = sign(cross) */
     HT_F_PITCH_BEYOND_90 = 1u << 3,   /* pitch error saturated to +/-1 */
     HT_F_FUSELAGE_VERTICAL = 1u << 4, /* X = Z = 0: projection direction defined as [-1, 0, 0] */
-    HT_F_SURFACE_SATURATED = 1u << 5  /* at least one surface clamped to +/-1 */
+    HT_F_SURFACE_SATURATED = 1u << 5, /* at least one surface clamped to +/-1 */
+    HT_F_ROLL_FADED = 1u << 6,        /* vertical_fade: sqrt(X^2 + Z^2) < vertical_fade */
+    HT_F_ROLL_IN_LIMITED = 1u << 7    /* roll_in: the target bank rate clamped to its bound */
 };
 
 /* One step's outputs: every intermediate of the spec, for logging. */
@@ -166,6 +191,13 @@ typedef struct {
     q14_t pitch_body_x, pitch_body_z; /* Eq. 11 or Eq. A.13 */
     q14_t aileron, elevator, rudder;  /* [-1, 1] */
     uint8_t flags;                    /* HT_F_* */
+    /* the options: the target bank rate added to rate_y in the roll demand
+     * (0 when roll_in is off); the fade factor on the roll error (1 when it
+     * does not act; the roll_error above is the faded one); the rudder's
+     * sideslip term, before the rudder's clamp (0 when kp_sideslip is 0) */
+    q11_t roll_in_rate_rad_s;
+    q14_t roll_fade;
+    q14_t sideslip_rudder;
 } ht_output_t;
 
 /*

@@ -82,7 +82,9 @@ static void test_extreme_inputs_give_bounded_outputs(void)
                      INT32_MIN,
                      INT16_MIN,
                      {INT16_MIN, INT16_MIN, INT16_MIN},
-                     1};
+                     1,
+                     INT16_MIN,
+                     INT16_MIN};
     ht_input_t hi = {INT16_MAX,
                      INT16_MAX,
                      INT16_MAX,
@@ -90,7 +92,9 @@ static void test_extreme_inputs_give_bounded_outputs(void)
                      INT32_MAX,
                      INT16_MAX,
                      {INT16_MAX, INT16_MAX, INT16_MAX},
-                     0};
+                     0,
+                     INT16_MAX,
+                     INT16_MAX};
     for (int set = 0; set < ts_gain_set_count; set++) {
         ht_controller_t c;
         TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &ts_gain_sets[set].params, NULL));
@@ -404,7 +408,7 @@ static void test_largest_gains_do_not_wrap(void)
     TEST_ASSERT_EQUAL_INT(HT_OK, ht_init(&c, &p, NULL));
     ht_input_t in = {
         INT16_MIN, INT16_MAX, INT16_MIN, INT16_MAX, INT32_MIN, 0, {INT16_MIN, INT16_MAX, INT16_MIN},
-        1};
+        1,         INT16_MIN, INT16_MAX};
     ht_output_t out;
     ht_step(&c, &in, &out);
     assert_bounded(&out);

@@ -283,7 +283,8 @@ static void test_bumpless_manual_to_fbw_with_full_stick_in_bank(void)
     in.rc_us[RC_MODE] = 1500u;
     double worst = max_step_change(&in, 100, &last);
     /* without the blend and the slew: the law's output on the new targets */
-    ht_input_t raw = {in.x, in.y, in.z, Q11_FROM_REAL(PI / 3.0), -Q16_ONE / 2, 1500, {0, 0, 0}, 0u};
+    ht_input_t raw = {in.x, in.y, in.z, Q11_FROM_REAL(PI / 3.0), -Q16_ONE / 2, 1500, {0, 0, 0},
+                      0u,   0,    0};
     ht_output_t lo;
     ht_step(&ctl, &raw, &lo);
     double jump = fmax(fabs(lo.aileron / 16384.0 - 1.0), fabs(lo.elevator / 16384.0 + 1.0));
