@@ -45,6 +45,24 @@ static int refuse(fw_t *fw, fw_bad_block_t block, int32_t sub)
     return 0;
 }
 
+/* The lateral specific force's low-pass: y += (x - y) / 2^k at the IMU rate,
+ * k = floor(log2(rate / 10)): a time constant of 2^k samples, 64 to 100 ms
+ * over the legal IMU rates (50 to 1000 Hz) -- well below the control rate's
+ * Nyquist (vibration and noise do not reach the rudder) and well above the
+ * airframe's sideslip dynamics. */
+#define ACCEL_LAT_PER_S 10u
+
+static uint8_t accel_lat_shift(uint16_t imu_rate_hz)
+{
+    uint32_t samples = (uint32_t)imu_rate_hz / ACCEL_LAT_PER_S;
+    uint8_t k = 0u;
+    while (samples > 1u) {
+        samples >>= 1;
+        k++;
+    }
+    return k;
+}
+
 int fw_init(fw_t *fw, const fw_config_t *cfg)
 {
     if (fw == NULL) {
@@ -99,6 +117,7 @@ int fw_init(fw_t *fw, const fw_config_t *cfg)
     }
     ht_upset_guard_reset(&fw->guard_state);
     ht_guide_reset(&fw->guide_state);
+    fw->accel_lat_shift = accel_lat_shift(cfg->dcm.imu_rate_hz);
     fw->imu_age = cfg->imu_timeout_samples; /* nothing flies before the first sample */
     fw->ready = 1u;
     return 1;
@@ -178,6 +197,9 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
         aid.airspeed_valid = fw->airspeed_live;
         aid.airspeed_cm_s = fw->pitot_cm_s;
         ht_dcm_update(&fw->dcm, &fw->dcm_state, &in->sensors.imu, &aid);
+        /* the lateral specific force, held to +/-32 g (the largest full scale) */
+        const int32_t lat = q_clamp32(in->sensors.imu.accel_g[0], -32 * Q16_ONE, 32 * Q16_ONE);
+        fw->accel_lat_q16 += q_rshift_round(lat - fw->accel_lat_q16, (unsigned)fw->accel_lat_shift);
     } else {
         fw->imu_age = age16(fw->imu_age);
     }
@@ -246,6 +268,36 @@ static void law_input(ht_input_t *li, const fw_nav_t *nav)
     li->gyro_rad_s[2] = nav->gyro_q11_rad_s[2];
 }
 
+/* The turn acceleration for the roll-in option: the change of the turn
+ * command (Q16 rad/s) since the previous control step, times the control
+ * rate, in Q11 rad/s^2 (the change held to 16 rad/s per step first; the
+ * result saturates at +/-16 rad/s^2). 0 on the first step. */
+static q11_t turn_accel(fw_t *fw, q16_t cmd_q16)
+{
+    q11_t a = 0;
+    if (fw->turn_primed != 0u) {
+        const int32_t d = q_clamp32(q_sub_sat32(cmd_q16, fw->turn_prev_q16), -16 * Q16_ONE,
+                                    16 * Q16_ONE);                 /* per step, |.| <= 2^20 */
+        const int32_t a_q16 = d * (int32_t)fw->cfg->modes.rate_hz; /* rate <= 1000: < 2^30 */
+        a = q_sat16(q_rshift_round(a_q16, 5u));
+    }
+    fw->turn_prev_q16 = cmd_q16;
+    fw->turn_primed = 1u;
+    return a;
+}
+
+/* The law's option inputs: the filtered lateral specific force always (Q14
+ * g, saturating at +/-2 g), the turn acceleration from the turn command
+ * (Q16) when roll_in is on, else 0. */
+static void option_inputs(fw_t *fw, q16_t turn_cmd_q16, ht_input_t *li)
+{
+    li->accel_lat_g = q_sat16(q_rshift_round(fw->accel_lat_q16, 2u));
+    li->turn_accel_rad_s2 = 0;
+    if (fw->cfg->law.roll_in != 0u) {
+        li->turn_accel_rad_s2 = turn_accel(fw, turn_cmd_q16);
+    }
+}
+
 /* The turn-rate trim (guide.h) on the law's input, then the law. The trim
  * holds while the previous step was tilt-limited or had a surface at its
  * stop, while the pilot flies (manual: the law's output is not used), and
@@ -289,6 +341,21 @@ static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_outpu
     ht_input_t *li = &o->law_in;
     law_input(li, nav);
     li->turn_rate_rad_s = c->turn_rate_rad_s;
+    /* With roll_in on, a guided command (the SIL's scenarios give steps) is
+     * slewed at the modes' turn_slew, as the modes slew theirs: the
+     * derivative of a step would ask for an unbounded bank rate. */
+    q16_t turn_q16 = (q16_t)c->turn_rate_rad_s * 32;
+    if (fw->cfg->law.roll_in != 0u) {
+        if (fw->turn_primed != 0u) {
+            const int32_t step = fw->modes.turn_slew_rad_s_per_tick;
+            turn_q16 =
+                q_add_sat32(fw->guided_turn_q16,
+                            q_clamp32(q_sub_sat32(turn_q16, fw->guided_turn_q16), -step, step));
+        }
+        fw->guided_turn_q16 = turn_q16;
+        li->turn_rate_rad_s = q_sat16(q_rshift_round(turn_q16, 5u));
+    }
+    option_inputs(fw, turn_q16, li);
     li->pitch_ratio = pitch;
     li->inverted = inverted;
     const uint8_t pm = (c->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
@@ -332,6 +399,7 @@ static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_outpu
     mi.heading_east = nav->heading_east;
     ht_modes_step(&fw->modes, &fw->modes_state, &mi, &o->modes);
     ht_input_t *li = &o->modes.law_in;
+    option_inputs(fw, fw->modes_state.turn_cmd_rad_s, li);
     li->pitch_ratio = ht_upset_guard_step(&fw->cfg->guard, &fw->guard_state, li->x, li->y, li->z,
                                           li->inverted, li->pitch_ratio);
     const uint8_t pm = (fw->cfg->modes_pitch_mode != 0u) ? 1u : 0u;
