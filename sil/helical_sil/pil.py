@@ -50,7 +50,7 @@ PROTOCOL_VERSION = 8  # 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST latenc
 #                        5: CFG_LAW and CFG_EST laid out by the parameter table;
 #                        6: CFG_EST ends with the guidance's rows;
 #                        7: CFG_ALT and CFG_SPD laid out by the parameter table;
-#                        8: CFG_LAW grows by the law options of issue 17 (59 bytes)
+#                        8: CFG_LAW grows by the law options of issue 17 (63 bytes)
 
 ID_HELLO, ID_CFG_LAW, ID_CFG_ALT, ID_CFG_SPD, ID_CFG_OUT, ID_START, ID_CFG_EST = (
     0x01, 0x10, 0x11, 0x12, 0x13, 0x14, 0x15)

@@ -66,9 +66,9 @@ def test_config_frames_have_the_documented_lengths() -> None:
                             "trim_elevator", "trim_rudder")}
     cfg.update(control_rate_hz=40, law={"schedule": 1})
     frames = pil.config_frames(cfg)
-    # protocol 8 (docs/hil-protocol.md): CFG_LAW 59 (issue 17's options),
+    # protocol 8 (docs/hil-protocol.md): CFG_LAW 63 (issue 17's options),
     # CFG_ALT 52, CFG_SPD 22, CFG_EST 60 with today's table
-    assert [f[2] for f in frames] == [59, 52, 22, 58, 60]
+    assert [f[2] for f in frames] == [63, 52, 22, 58, 60]
     assert [f[3] for f in frames] == [0x10, 0x11, 0x12, 0x13, 0x15]
 
 
@@ -98,14 +98,16 @@ def test_cfg_law_and_cfg_est_follow_the_table() -> None:
     each value lands where hil_fw.c's generated parser reads it."""
     law = {"kp_aileron": 2.0, "kd_rudder": 0.5, "v_ref": 110.0, "v_min": 30.0,
            "schedule": 1, "max_tilt": 2.5, "pitch_mode": 1,
-           "roll_in": 1, "kp_sideslip": 1.5, "vertical_fade": 0.25}
+           "roll_in": 1, "roll_in_rate_max": 0.5, "kp_sideslip": 1.5, "vertical_fade": 0.25}
     p = pil.cfg_law_payload({"control_rate_hz": 40, "law": law})
     i32 = lambda o: int.from_bytes(p[o:o + 4], "little", signed=True)  # noqa: E731
     assert i32(0) == 2 * 65536 and i32(4) == 65536 and i32(32) == 32768
     assert i32(36) == 11000 and i32(40) == 3000
     assert p[44] == 1 and i32(45) == int(2.5 * 65536) and p[49] == 1
-    # protocol 8: the law options of issue 17 (roll_in u8, kp_sideslip, vertical_fade Q16)
-    assert p[50] == 1 and i32(51) == 98304 and i32(55) == 16384 and len(p) == 59
+    # protocol 8: the law options of issue 17 (roll_in u8, then roll_in_rate_max,
+    # kp_sideslip, vertical_fade Q16)
+    assert p[50] == 1 and i32(51) == 32768 and i32(55) == 98304 and i32(59) == 16384
+    assert len(p) == 63
     est = {"imu_rate_hz": 120, "gyro_bias_max": 0.1, "gps_min_speed": -1.5, "gps_latency": 80}
     guide = {"turn_trim": 0, "turn_trim_tau": 7.5, "turn_trim_hold": 3}
     p = pil.cfg_est_payload({"control_rate_hz": 40, "estimator": est, "guidance": guide})
