@@ -320,7 +320,7 @@ static void pitch_tilt_cross(const ht_input_t *in, const target_t *tg, int32_t b
  * act) and s_ff Q25 (below 2^-30 relative).
  */
 static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q25,
-                           int32_t e_q28, int32_t rate_d_q25, q11_t gyro_q11)
+                           int32_t e_q28, int32_t rate_d_q25, q11_t gyro_q11, bool wide)
 {
     const q16_t kp = ctl->gains.kp[axis];
     const q16_t kff = ctl->gains.kff[axis];
@@ -331,6 +331,13 @@ static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_
         unsigned fmt = 22u;
         if (s_ff_q25 >= S_FF_ONE_Q25) {
             fmt = 29u;
+        }
+        if (wide) {
+            /* a term added after this one (the sideslip rudder, up to 128)
+             * must not meet a demand saturated below it: the sum holds
+             * 129 / s_ff (Q23 when s_ff >= 1, else Q15 since s_ff >= 2^-8.4),
+             * its rounding at most 2^-24 * 32 or 2^-16 (1/4 LSB) */
+            fmt = (fmt == 29u) ? 23u : 15u;
         }
         const int32_t sum = qi_dot3((kff + kd) * 8, rate_d_q25, -kd * 256, (int32_t)gyro_q11 * 512,
                                     -kp, e_q28, 44u - fmt);
@@ -418,14 +425,17 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
 
     /* 10-11. Demands and surfaces. */
     o->elevator = surface_from_q20(
-        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0])),
+        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0], false)),
         &flags);
     o->aileron = surface_from_q20(
-        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1] + roll_in_q25, in->gyro_rad_s[1]), &flags);
+        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1] + roll_in_q25, in->gyro_rad_s[1], false),
+        &flags);
     /* Option sideslip: rudder toward zero lateral specific force. */
-    int32_t rudder_q20 = axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]);
+    const bool sideslip_on = (ctl->kp_sideslip != 0);
+    int32_t rudder_q20 =
+        axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2], sideslip_on);
     int32_t sideslip_q20 = 0;
-    if (ctl->kp_sideslip != 0) {
+    if (sideslip_on) {
         sideslip_q20 = ht_opt_sideslip_q20(ctl, in->accel_lat_g);
         rudder_q20 = qi_add_sat32(rudder_q20, sideslip_q20);
     }

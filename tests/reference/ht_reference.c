@@ -31,6 +31,10 @@ void ht_ref_params_from_controller(const ht_controller_t *ctl, ht_ref_params_t *
     p->max_tilt = ctl->max_tilt / 65536.0;
     p->schedule = ctl->schedule;
     p->pitch_mode = ctl->pitch_mode;
+    p->roll_in = ctl->roll_in;
+    p->roll_in_max = ctl->roll_in_max_q25 / 33554432.0;
+    p->kp_sideslip = ctl->kp_sideslip / 65536.0;
+    p->vertical_fade = ctl->vertical_fade / 65536.0;
 }
 
 void ht_ref_input_from_fixed(const ht_input_t *in, ht_ref_input_t *r)
@@ -45,6 +49,8 @@ void ht_ref_input_from_fixed(const ht_input_t *in, ht_ref_input_t *r)
         r->gyro[i] = in->gyro_rad_s[i] / 2048.0;
     }
     r->inverted = in->inverted != 0;
+    r->turn_accel = in->turn_accel_rad_s2 / 2048.0;
+    r->accel_lat = in->accel_lat_g / 16384.0;
 }
 
 void ht_ref_step(const ht_ref_params_t *p, const ht_ref_input_t *in, ht_ref_output_t *o)
@@ -86,8 +92,25 @@ void ht_ref_step(const ht_ref_params_t *p, const ht_ref_input_t *in, ht_ref_outp
     o->roll_cross = in->z * xt - zt * in->x;
     o->roll_error = (o->roll_dot > 0) ? o->roll_cross : sign_pos(o->roll_cross);
 
+    /* Option roll-in: d/dt atan(ratio) at constant S, none while the tilt
+     * limit holds the target, bounded. */
+    o->roll_in_rate = 0.0;
+    if (p->roll_in && !(o->ratio_margin > 0)) {
+        double rd = in->turn_accel * s / G_M_S2 / (1.0 + ratio * ratio);
+        if (fabs(rd) > p->roll_in_max) {
+            rd = (rd > 0) ? p->roll_in_max : -p->roll_in_max;
+        }
+        o->roll_in_rate = rd;
+    }
+
     /* 6, 7. Eq. 10, 11 (or Eq. A.13) */
     double a = sqrt(in->x * in->x + in->z * in->z);
+    /* Option vertical fade of the roll error. */
+    o->roll_fade = 1.0;
+    if (p->vertical_fade > 0 && a < p->vertical_fade) {
+        o->roll_fade = a / p->vertical_fade;
+        o->roll_error *= o->roll_fade;
+    }
     double t = sqrt(xt * xt + zt * zt);
     o->a = a;
     double e[3];
@@ -121,9 +144,15 @@ void ht_ref_step(const ht_ref_params_t *p, const ht_ref_input_t *in, ht_ref_outp
     double s_ff = p->v_ref / s;
     double s_p = p->schedule ? s_ff : 1.0;
     double d[3];
+    const double rate_d[3] = {o->rate[0], o->rate[1] + o->roll_in_rate, o->rate[2]};
     for (int i = 0; i < 3; i++) {
-        d[i] = -p->kp[i] * s_p * e[i] + p->kff[i] * s_ff * o->rate[i] +
-               p->kd[i] * s_p * (o->rate[i] - in->gyro[i]);
+        d[i] = -p->kp[i] * s_p * e[i] + p->kff[i] * s_ff * rate_d[i] +
+               p->kd[i] * s_p * (rate_d[i] - in->gyro[i]);
+    }
+    /* Option sideslip: rudder toward zero lateral specific force. */
+    o->sideslip_rudder = p->kp_sideslip * in->accel_lat;
+    d[2] += o->sideslip_rudder;
+    for (int i = 0; i < 3; i++) {
         o->demand[i] = d[i];
     }
     o->aileron = clamp1(d[1]);

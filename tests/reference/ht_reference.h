@@ -15,6 +15,8 @@ typedef struct {
     double airspeed;  /* m/s */
     double gyro[3];   /* rad/s about X, Y, Z */
     int inverted;
+    double turn_accel; /* rad/s^2 (roll_in) */
+    double accel_lat;  /* g, + = toward the left wing (kp_sideslip) */
 } ht_ref_input_t;
 
 typedef struct {
@@ -22,6 +24,11 @@ typedef struct {
     double v_ref, v_min, max_tilt;
     int schedule;
     int pitch_mode;
+    /* the options (docs/control-law.md "Extensions beyond the seed") */
+    int roll_in;
+    double roll_in_max;   /* rad/s */
+    double kp_sideslip;   /* per g */
+    double vertical_fade; /* 0 = off */
 } ht_ref_params_t;
 
 typedef struct {
@@ -40,6 +47,10 @@ typedef struct {
     double pitch_agree;  /* Y*Yt + a*t: <= 0 saturates the pitch error */
     double pitch_raw;    /* the pitch error before saturation */
     double a;            /* sqrt(X^2 + Z^2) */
+    /* the options: the target bank rate added to the roll axis' target rate,
+     * the fade factor of the roll error (1 when it does not act; roll_error
+     * above is the faded one), the rudder's sideslip term */
+    double roll_in_rate, roll_fade, sideslip_rudder;
 } ht_ref_output_t;
 
 /* The parameters exactly as the controller holds them (after conversion). */
