@@ -43,7 +43,7 @@ from helical_sil import params
 # kp_sideslip's and vertical_fade's "on" values are a starting point, --on overrides.
 OPTIONS: tuple[tuple[str, str, float], ...] = (
     ("roll_in", "law", 1.0),
-    ("kp_sideslip", "law", 1.0),
+    ("kp_sideslip", "law", 2.0),
     ("turn_trim", "guidance", 1.0),
     ("vertical_fade", "law", 0.1),
 )
