@@ -197,9 +197,12 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
         aid.airspeed_valid = fw->airspeed_live;
         aid.airspeed_cm_s = fw->pitot_cm_s;
         ht_dcm_update(&fw->dcm, &fw->dcm_state, &in->sensors.imu, &aid);
-        /* the lateral specific force, held to +/-32 g (the largest full scale) */
+        /* the lateral specific force, held to +/-32 g (the largest full
+         * scale), filtered in Q20 (2^25 at most) so that the rounding's dead
+         * band (2^(k-1) LSB) is a small fraction of the law's Q14 LSB */
         const int32_t lat = q_clamp32(in->sensors.imu.accel_g[0], -32 * Q16_ONE, 32 * Q16_ONE);
-        fw->accel_lat_q16 += q_rshift_round(lat - fw->accel_lat_q16, (unsigned)fw->accel_lat_shift);
+        fw->accel_lat_q20 +=
+            q_rshift_round((lat * 16) - fw->accel_lat_q20, (unsigned)fw->accel_lat_shift);
     } else {
         fw->imu_age = age16(fw->imu_age);
     }
@@ -291,7 +294,7 @@ static q11_t turn_accel(fw_t *fw, q16_t cmd_q16)
  * (Q16) when roll_in is on, else 0. */
 static void option_inputs(fw_t *fw, q16_t turn_cmd_q16, ht_input_t *li)
 {
-    li->accel_lat_g = q_sat16(q_rshift_round(fw->accel_lat_q16, 2u));
+    li->accel_lat_g = q_sat16(q_rshift_round(fw->accel_lat_q20, 6u));
     li->turn_accel_rad_s2 = 0;
     if (fw->cfg->law.roll_in != 0u) {
         li->turn_accel_rad_s2 = turn_accel(fw, turn_cmd_q16);

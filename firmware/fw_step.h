@@ -156,12 +156,12 @@ typedef struct {
     ht_guide_state_t guide_state;
     uint8_t law_flags; /* the previous control step's ht_output_t flags */
     /* The law's option inputs (docs/control-law.md "Extensions beyond the
-     * seed"): the lateral specific force low-passed at the IMU rate (Q16 g,
+     * seed"): the lateral specific force low-passed at the IMU rate (Q20 g,
      * time constant 2^accel_lat_shift samples, 64..100 ms); with roll_in on,
      * the guided turn command slewed at the modes' turn_slew (Q16 rad/s),
      * and the previous control step's turn command (Q16 rad/s) from which
      * the turn acceleration is taken. */
-    int32_t accel_lat_q16;
+    int32_t accel_lat_q20;
     uint8_t accel_lat_shift;
     uint8_t turn_primed; /* turn_prev_q16 (and guided_turn_q16) hold a command */
     q16_t guided_turn_q16;

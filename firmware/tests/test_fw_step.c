@@ -8,6 +8,7 @@
 
 #include "fw_step.h"
 
+#include <math.h>
 #include <string.h>
 
 static fw_config_t cfg;
@@ -170,6 +171,71 @@ static void test_guided_path_is_the_library_chain(void)
     TEST_ASSERT_EQUAL_MEMORY(&lo, &out.law, sizeof lo);
 }
 
+/* The law's option inputs (docs/control-law.md "Extensions beyond the
+ * seed"). roll_in off: a guided step reaches the law as a step, with no
+ * turn acceleration. roll_in on: it is slewed at the modes' turn_slew
+ * (180 deg/s^2 = 3.1416 rad/s^2: 0.07854 rad/s per 40 Hz step), and the law
+ * is given that slope as its turn acceleration, 0 once the slew is done. */
+static void test_roll_in_slews_a_guided_step(void)
+{
+    fw_guided_t g;
+    memset(&g, 0, sizeof g);
+    g.throttle = Q14_ONE / 2;
+    in.guided = &g;
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    g.turn_rate_rad_s = Q11_FROM_REAL(0.3);
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(Q11_FROM_REAL(0.3), out.law_in.turn_rate_rad_s);
+    TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2);
+
+    cfg.law.roll_in = 1u;
+    g.turn_rate_rad_s = 0;
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2); /* the first step: no history */
+    g.turn_rate_rad_s = Q11_FROM_REAL(0.3);
+    const double per_step = 3.14159265 / 40.0; /* rad/s */
+    int k = 0;
+    for (; k < 10 && (k == 0 || out.law_in.turn_rate_rad_s < g.turn_rate_rad_s); ++k) {
+        (void)run_until_control();
+        const double expect = fmin(0.3, (k + 1) * per_step);
+        TEST_ASSERT_INT_WITHIN(2, (int)lround(expect * 2048.0), out.law_in.turn_rate_rad_s);
+        if (expect < 0.3) {
+            /* the slope: 3.1416 rad/s^2 in Q11, within the Q16 step's rounding */
+            TEST_ASSERT_INT_WITHIN(64, 6434, out.law_in.turn_accel_rad_s2);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(4, k); /* 0.3 / 0.0785: four steps */
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(Q11_FROM_REAL(0.3), out.law_in.turn_rate_rad_s);
+    TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2);
+}
+
+/* The lateral specific force reaches the law low-passed at the IMU rate
+ * (200 Hz: 2^4 samples, 80 ms): a step of 0.2 g is 1/16 of the way after
+ * one sample and settled within 1 LSB after a second. */
+static void test_lateral_force_is_filtered_into_the_law(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    TEST_ASSERT_EQUAL_UINT8(4u, fw.accel_lat_shift);
+    in.sensors.imu.accel_g[0] = Q16_FROM_REAL(0.2);
+    (void)fw_step(&fw, &in, &out);
+    TEST_ASSERT_INT_WITHIN(1, Q16_FROM_REAL(0.2), fw.accel_lat_q20); /* Q20 / 16 */
+    for (int k = 0; k < 200; ++k) {
+        (void)run_until_control();
+    }
+    TEST_ASSERT_INT_WITHIN(1, Q14_FROM_REAL(0.2), out.law_in.accel_lat_g);
+    TEST_ASSERT_INT_WITHIN(1, Q14_FROM_REAL(0.2), out.modes.law_in.accel_lat_g);
+    /* anything a driver gives is held: 32 g, then 2 g in the law's Q14 */
+    in.sensors.imu.accel_g[0] = INT32_MAX;
+    for (int k = 0; k < 200; ++k) {
+        (void)run_until_control();
+    }
+    TEST_ASSERT_EQUAL_INT16(INT16_MAX, out.law_in.accel_lat_g);
+    TEST_ASSERT_INT_WITHIN(16, 32 * 16 * Q16_ONE, fw.accel_lat_q20);
+}
+
 /* The pilot path: no RC ever -> manual, neutral, throttle 0; a good RC
  * then lost -> the modes' failsafe (RTH) after rc_loss_ticks. */
 static void test_pilot_path_rc_loss_policy(void)
@@ -225,6 +291,8 @@ int main(void)
     RUN_TEST(test_imu_loss_gives_the_failsafe_pulses);
     RUN_TEST(test_guided_path_is_the_library_chain);
     RUN_TEST(test_pilot_path_rc_loss_policy);
+    RUN_TEST(test_roll_in_slews_a_guided_step);
+    RUN_TEST(test_lateral_force_is_filtered_into_the_law);
     RUN_TEST(test_extreme_gps_and_baro_values);
     return UNITY_END();
 }
