@@ -19,7 +19,9 @@ The per-row metrics (worst over the row's segments):
   that bank (like for like);
 - turn_rate_error_pct (steady part), steady_sideslip_rms_deg (steady part of
   the turns), bank_overshoot_deg, entry_altitude_loss_m (altitude lost in the
-  entry window of every turn-rate change: the rolls);
+  entry window of every turn-rate change: the rolls); the run's
+  sideslip_rms_deg and cross_track_max_m (waypoint legs: all a guided
+  scenario shows);
 - rmse_2x_deg_s: the steady turn-rate RMS error at 2x the gains, and
   limit_cycle_2x: the 2x run hit the ground, or that RMS error exceeds both
   LIMIT_CYCLE_RMSE_DEG_S and twice the 1x run's.
@@ -53,9 +55,13 @@ GOALS = {"entry_ratio": 1.5, "turn_rate_error_pct": 2.0, "steady_sideslip_rms_de
 # of a seeded, bit-reproducible run: these are changes a reader would notice)
 TOLERANCE = {"entry_ratio": 0.05, "bank_ratio": 0.05, "turn_rate_error_pct": 0.25,
              "steady_sideslip_rms_deg": 0.1, "bank_overshoot_deg": 1.0,
-             "entry_altitude_loss_m": 1.0, "rmse_2x_deg_s": 0.25}
+             "entry_altitude_loss_m": 1.0, "rmse_2x_deg_s": 0.25,
+             "sideslip_rms_deg": 0.1, "cross_track_max_m": 2.0}
 METRICS = ("entry_ratio", "bank_ratio", "turn_rate_error_pct", "steady_sideslip_rms_deg",
-           "bank_overshoot_deg", "entry_altitude_loss_m", "rmse_2x_deg_s")
+           "bank_overshoot_deg", "entry_altitude_loss_m", "rmse_2x_deg_s",
+           # the whole run: what the waypoint scenarios (guided, no constant turn
+           # command) can show -- the run's sideslip RMS and largest cross-track
+           "sideslip_rms_deg", "cross_track_max_m")
 LIMIT_CYCLE_RMSE_DEG_S = 0.5  # tune.GOALS' oscillation goal
 TURN_MIN_DEG_S = 1.0
 
@@ -230,6 +236,8 @@ def row_metrics(m: dict[str, Any], m2: dict[str, Any] | None,
     out["steady_sideslip_rms_deg"] = worst("steady_sideslip_rms_deg", turns)
     out["bank_overshoot_deg"] = worst("bank_overshoot_deg", segs)
     out["entry_altitude_loss_m"] = worst("entry_altitude_loss_m", segs)
+    out["sideslip_rms_deg"] = m["run"].get("sideslip_rms_deg")
+    out["cross_track_max_m"] = m["run"].get("cross_track_max_m")
     fa = limit_of(limit) if limit and "error" not in limit else None
     ratios, bratios, lims = [], [], []
     prev = 0.0
