@@ -37,6 +37,9 @@ static void typical(ht_csv_field_t v[HT_COL_COUNT])
     set(v, HT_COL_GYRO_Y, "0.001");
     set(v, HT_COL_GYRO_Z, "15.9995");
     set(v, HT_COL_INVERTED, "1");
+    /* the optional columns as the reader gives them when a file lacks them */
+    set(v, HT_COL_TURN_ACCEL, "0");
+    set(v, HT_COL_ACCEL_LAT, "0");
 }
 
 static void test_row_to_input_exact_integers(void)
@@ -55,6 +58,14 @@ static void test_row_to_input_exact_integers(void)
     TEST_ASSERT_EQUAL_INT16(2, in.gyro_rad_s[1]); /* 2.048 */
     TEST_ASSERT_EQUAL_INT16(32767, in.gyro_rad_s[2]);
     TEST_ASSERT_EQUAL_UINT8(1, in.inverted);
+    TEST_ASSERT_EQUAL_INT16(0, in.turn_accel_rad_s2);
+    TEST_ASSERT_EQUAL_INT16(0, in.accel_lat_g);
+    /* the optional columns of the law's options */
+    set(v, HT_COL_TURN_ACCEL, "-1.25");
+    set(v, HT_COL_ACCEL_LAT, "0.1");
+    TEST_ASSERT_EQUAL_INT(0, ht_replay_to_input(v, 2, &in, &err));
+    TEST_ASSERT_EQUAL_INT16(-2560, in.turn_accel_rad_s2);
+    TEST_ASSERT_EQUAL_INT16(1638, in.accel_lat_g); /* 1638.4 */
 }
 
 static void expect_out_of_range(ht_csv_col_t col, const char *value, const char *what)
@@ -78,6 +89,8 @@ static void test_values_that_do_not_fit_are_errors(void)
     expect_out_of_range(HT_COL_Y, "-2.0001", "Q14");
     expect_out_of_range(HT_COL_Z, "1.99997", "Q14"); /* rounds to 32768 */
     expect_out_of_range(HT_COL_TURN_RATE, "20.0", "20 does not fit the core's format (Q11");
+    expect_out_of_range(HT_COL_TURN_ACCEL, "16", "16 does not fit the core's format (Q11 rad/s^2");
+    expect_out_of_range(HT_COL_ACCEL_LAT, "-2.5", "-2.5 does not fit the core's format (Q14 g");
     expect_out_of_range(HT_COL_PITCH, "40000.0", "Q16");
     expect_out_of_range(HT_COL_AIRSPEED, "400.0", "int16 cm/s");
     expect_out_of_range(HT_COL_AIRSPEED, "-327.69", "int16 cm/s");

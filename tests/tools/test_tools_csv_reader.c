@@ -236,11 +236,42 @@ static void test_header_canonical_order(void)
 {
     TEST_ASSERT_EQUAL_INT(0, parse_header(CANON));
     ASSERT_SIZE(10, hdr.nfields);
-    for (int c = 0; c < (int)HT_COL_COUNT; c++) {
+    for (int c = 0; c < HT_COL_REQUIRED; c++) {
         ASSERT_SIZE((size_t)c, hdr.index[c]);
         TEST_ASSERT_EQUAL_INT(c, hdr.column_of[c]);
     }
+    /* the optional columns of the law's options: absent, and read as 0 */
+    for (int c = HT_COL_REQUIRED; c < (int)HT_COL_COUNT; c++) {
+        ASSERT_SIZE(HT_CSV_ABSENT, hdr.index[c]);
+    }
+    double v[HT_COL_COUNT];
+    v[HT_COL_TURN_ACCEL] = v[HT_COL_ACCEL_LAT] = 7.0;
+    TEST_ASSERT_EQUAL_INT(0, parse_row("0,0,1,0.5,0,15,0,0,0,0", v));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, v[HT_COL_TURN_ACCEL]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, v[HT_COL_ACCEL_LAT]);
     TEST_ASSERT_EQUAL_STRING("turn_rate", hdr.names[3]);
+}
+
+/* The optional columns, in any place, once each; their fields are parsed and
+ * their errors named like any column's. */
+static void test_header_optional_columns(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, parse_header("accel_lat," CANON ",turn_accel"));
+    ASSERT_SIZE(0, hdr.index[HT_COL_ACCEL_LAT]);
+    ASSERT_SIZE(11, hdr.index[HT_COL_TURN_ACCEL]);
+    double v[HT_COL_COUNT];
+    TEST_ASSERT_EQUAL_INT(0, parse_row("-0.25,0,0,1,0.5,0,15,0,0,0,0,1.5", v));
+    TEST_ASSERT_EQUAL_DOUBLE(-0.25, v[HT_COL_ACCEL_LAT]);
+    TEST_ASSERT_EQUAL_DOUBLE(1.5, v[HT_COL_TURN_ACCEL]);
+    TEST_ASSERT_EQUAL_INT(-1, parse_row("-0.25,0,0,1,0.5,0,15,0,0,0,0,fast", v));
+    assert_error(7, "turn_accel", "not a number: \"fast\"");
+    ht_csv_header_free(&hdr);
+    TEST_ASSERT_EQUAL_INT(-1, parse_header(CANON ",accel_lat,accel_lat"));
+    assert_error(1, "accel_lat", "appears twice (fields 11 and 12)");
+    /* an optional column does not stand in for a required one */
+    TEST_ASSERT_EQUAL_INT(-1, parse_header("x,y,z,turn_rate,pitch,airspeed,gyro_x,gyro_y,gyro_z,"
+                                           "turn_accel,accel_lat"));
+    assert_error(1, "inverted", "missing from the header");
 }
 
 static void test_header_any_order_extra_columns_blanks_and_quotes(void)
@@ -516,6 +547,8 @@ static void test_column_names(void)
     TEST_ASSERT_EQUAL_STRING("x", ht_csv_col_name(HT_COL_X));
     TEST_ASSERT_EQUAL_STRING("turn_rate", ht_csv_col_name(HT_COL_TURN_RATE));
     TEST_ASSERT_EQUAL_STRING("inverted", ht_csv_col_name(HT_COL_INVERTED));
+    TEST_ASSERT_EQUAL_STRING("turn_accel", ht_csv_col_name(HT_COL_TURN_ACCEL));
+    TEST_ASSERT_EQUAL_STRING("accel_lat", ht_csv_col_name(HT_COL_ACCEL_LAT));
     TEST_ASSERT_EQUAL_STRING("", ht_csv_col_name(HT_COL_COUNT));
 }
 
@@ -528,6 +561,7 @@ int main(void)
     RUN_TEST(test_decimal_round_halves_away_and_bounds);
     RUN_TEST(test_decimal_round_seeded_ties);
     RUN_TEST(test_header_canonical_order);
+    RUN_TEST(test_header_optional_columns);
     RUN_TEST(test_header_any_order_extra_columns_blanks_and_quotes);
     RUN_TEST(test_header_unprintable_name_in_message);
     RUN_TEST(test_header_names_are_case_sensitive);

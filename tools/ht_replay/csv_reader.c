@@ -8,7 +8,8 @@
 #include "number.h"
 
 static const char *const col_names[HT_COL_COUNT] = {
-    "x", "y", "z", "turn_rate", "pitch", "airspeed", "gyro_x", "gyro_y", "gyro_z", "inverted",
+    "x",      "y",      "z",      "turn_rate", "pitch",      "airspeed",
+    "gyro_x", "gyro_y", "gyro_z", "inverted",  "turn_accel", "accel_lat",
 };
 
 const char *ht_csv_col_name(ht_csv_col_t col)
@@ -255,6 +256,9 @@ int ht_csv_parse_header(const char *text, size_t len, ht_csv_header_t *h, ht_csv
         return -1;
     }
     int seen[HT_COL_COUNT] = {0};
+    for (int c = 0; c < (int)HT_COL_COUNT; c++) {
+        h->index[c] = HT_CSV_ABSENT;
+    }
     char *out = h->name_text;
     pos = 0;
     for (size_t k = 0; k < nfields; k++) {
@@ -278,7 +282,7 @@ int ht_csv_parse_header(const char *text, size_t len, ht_csv_header_t *h, ht_csv
         }
         out += n + 1;
     }
-    for (int c = 0; c < (int)HT_COL_COUNT; c++) {
+    for (int c = 0; c < HT_COL_REQUIRED; c++) {
         if (!seen[c]) {
             set_column_text(err, col_names[c], strlen(col_names[c]));
             set_error(err, 1, "missing from the header (needed: %s)",
@@ -437,6 +441,11 @@ int ht_csv_parse_row_fields(const ht_csv_header_t *h, const char *text, size_t l
     if (text == NULL) {
         text = "";
         len = 0;
+    }
+    for (int c = HT_COL_REQUIRED; c < (int)HT_COL_COUNT; c++) {
+        fields[c].text = "0"; /* an optional column the header lacks */
+        fields[c].len = 1;
+        values[c] = 0.0;
     }
     const char *t = text;
     size_t tl = len;

@@ -31,10 +31,20 @@ typedef enum {
     HT_COL_GYRO_Y,
     HT_COL_GYRO_Z,
     HT_COL_INVERTED,
+    /* optional (the law's options, docs/control-law.md "Extensions beyond the
+     * seed"): a file without them reads as 0, which an option off ignores */
+    HT_COL_TURN_ACCEL,
+    HT_COL_ACCEL_LAT,
     HT_COL_COUNT
 } ht_csv_col_t;
 
-/* "x", "y", ..., "inverted"; "" for an out-of-range value. */
+/* The columns every file must have: x .. inverted. */
+#define HT_COL_REQUIRED ((int)HT_COL_INVERTED + 1)
+
+/* index[] of an optional column the header does not have. */
+#define HT_CSV_ABSENT ((size_t)-1)
+
+/* "x", "y", ..., "inverted", "turn_accel", "accel_lat"; "" for an out-of-range value. */
 const char *ht_csv_col_name(ht_csv_col_t col);
 
 /*
@@ -65,7 +75,8 @@ void ht_csv_error_format(const ht_csv_error_t *e, char *buf, size_t size);
  * ht_csv_header_free. */
 typedef struct {
     size_t nfields;             /* fields in the header line (at least 1) */
-    size_t index[HT_COL_COUNT]; /* field position (0-based) of each input column */
+    size_t index[HT_COL_COUNT]; /* field position (0-based) of each input column, or
+                                   HT_CSV_ABSENT (an optional column the file lacks) */
     int *column_of;             /* per field: its ht_csv_col_t, or -1 if ignored */
     char **names;               /* per field: its name (unquoted, trimmed), for messages */
     char *name_text;            /* storage of the names */
@@ -79,8 +90,9 @@ typedef struct {
 void ht_csv_header_free(ht_csv_header_t *h);
 
 /*
- * Map a header line (line 1). Every input column must appear exactly once;
- * other columns are allowed and ignored. Returns 0, or -1 with err filled:
+ * Map a header line (line 1). Every required input column must appear
+ * exactly once, an optional one at most once; other columns are allowed and
+ * ignored. Returns 0, or -1 with err filled:
  * a missing column names that column; a duplicate or a broken quote names
  * the field. On failure h is left empty (nothing to free).
  */
@@ -131,7 +143,8 @@ int ht_csv_read_header(FILE *f, ht_csv_line_t *line, ht_csv_header_t *h, ht_csv_
 
 /*
  * Split one data line and parse the ten input columns into values[] (indexed
- * by ht_csv_col_t; ignored columns are not parsed). The row must have exactly
+ * by ht_csv_col_t; ignored columns are not parsed; an optional column the
+ * header lacks is 0, its text "0"). The row must have exactly
  * h->nfields fields. Returns 0, or -1 with err naming line_number and the
  * column of the first problem, from left to right; the messages are those of
  * ht_parse_number ("empty field", "not a number", "not finite", "too large")

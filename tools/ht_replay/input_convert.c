@@ -16,6 +16,9 @@ typedef struct {
 static const col_format_t q14_fmt = {16384u, INT16_MIN, INT16_MAX, "Q14, [-2, 1.99994]"};
 static const col_format_t q11_fmt = {2048u, INT16_MIN, INT16_MAX, "Q11 rad/s, [-16, 15.9995]"};
 static const col_format_t q16_fmt = {65536u, INT32_MIN, INT32_MAX, "Q16, [-32768, 32767.99998]"};
+static const col_format_t q11_accel_fmt = {2048u, INT16_MIN, INT16_MAX,
+                                           "Q11 rad/s^2, [-16, 15.9995]"};
+static const col_format_t q14_g_fmt = {16384u, INT16_MIN, INT16_MAX, "Q14 g, [-2, 1.99994]"};
 static const col_format_t cm_fmt = {100u, INT16_MIN, INT16_MAX,
                                     "int16 cm/s, [-327.68, 327.67] m/s"};
 
@@ -43,9 +46,12 @@ int ht_replay_to_input(const ht_csv_field_t fields[HT_COL_COUNT], unsigned long 
         ht_csv_col_t col;
         const col_format_t *fmt;
     } plan[] = {
-        {HT_COL_X, &q14_fmt},         {HT_COL_Y, &q14_fmt},      {HT_COL_Z, &q14_fmt},
-        {HT_COL_TURN_RATE, &q11_fmt}, {HT_COL_PITCH, &q16_fmt},  {HT_COL_AIRSPEED, &cm_fmt},
-        {HT_COL_GYRO_X, &q11_fmt},    {HT_COL_GYRO_Y, &q11_fmt}, {HT_COL_GYRO_Z, &q11_fmt},
+        {HT_COL_X, &q14_fmt},           {HT_COL_Y, &q14_fmt},
+        {HT_COL_Z, &q14_fmt},           {HT_COL_TURN_RATE, &q11_fmt},
+        {HT_COL_PITCH, &q16_fmt},       {HT_COL_AIRSPEED, &cm_fmt},
+        {HT_COL_GYRO_X, &q11_fmt},      {HT_COL_GYRO_Y, &q11_fmt},
+        {HT_COL_GYRO_Z, &q11_fmt},      {HT_COL_TURN_ACCEL, &q11_accel_fmt},
+        {HT_COL_ACCEL_LAT, &q14_g_fmt},
     };
     long fixed[HT_COL_COUNT] = {0};
     for (size_t i = 0; i < sizeof plan / sizeof plan[0]; i++) {
@@ -79,5 +85,7 @@ int ht_replay_to_input(const ht_csv_field_t fields[HT_COL_COUNT], unsigned long 
     in->gyro_rad_s[1] = (q11_t)fixed[HT_COL_GYRO_Y];
     in->gyro_rad_s[2] = (q11_t)fixed[HT_COL_GYRO_Z];
     in->inverted = inv != 0.0 ? 1u : 0u;
+    in->turn_accel_rad_s2 = (q11_t)fixed[HT_COL_TURN_ACCEL];
+    in->accel_lat_g = (q14_t)fixed[HT_COL_ACCEL_LAT];
     return 0;
 }

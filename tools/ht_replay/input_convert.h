@@ -15,6 +15,9 @@
  *   airspeed   m/s    int16 cm/s       [-327.68, 327.67]
  *   gyro_*     rad/s  Q11 (2048 = 1)   [-16, 15.9995]
  *   inverted   0/1    uint8            exactly 0 or 1
+ * and the optional columns of the law's options (0 when absent):
+ *   turn_accel rad/s^2 Q11 (2048 = 1)  [-16, 15.9995]  (roll_in)
+ *   accel_lat  g       Q14 (16384 = 1) [-2, 1.99994]   (kp_sideslip; + = left wing)
  */
 #ifndef HT_REPLAY_INPUT_CONVERT_H
 #define HT_REPLAY_INPUT_CONVERT_H
