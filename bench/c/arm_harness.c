@@ -31,11 +31,13 @@ int32_t bench_vec_out[3];
 q14_t bench_q14_vec[3];
 
 /* Layout checks: the driver packs these structs itself. */
-_Static_assert(sizeof(ht_input_t) == 24u, "ht_input_t layout");
+_Static_assert(sizeof(ht_input_t) == 28u, "ht_input_t layout");
 _Static_assert(offsetof(ht_input_t, pitch_ratio) == 8u, "ht_input_t layout");
 _Static_assert(offsetof(ht_input_t, airspeed_cm_s) == 12u, "ht_input_t layout");
 _Static_assert(offsetof(ht_input_t, gyro_rad_s) == 14u, "ht_input_t layout");
 _Static_assert(offsetof(ht_input_t, inverted) == 20u, "ht_input_t layout");
+_Static_assert(offsetof(ht_input_t, turn_accel_rad_s2) == 22u, "ht_input_t layout");
+_Static_assert(offsetof(ht_input_t, accel_lat_g) == 24u, "ht_input_t layout");
 _Static_assert(sizeof(law_input_f32_t) == 40u, "law_input_f32_t layout");
 _Static_assert(sizeof(law_input_f64_t) == 80u, "law_input_f64_t layout");
 
@@ -54,5 +56,6 @@ const bench_fn_t bench_keep[] = {(bench_fn_t)ht_step,           (bench_fn_t)q14_
 _Static_assert(offsetof(ht_output_t, tilt_ratio) == 4u, "ht_output_t layout");
 _Static_assert(offsetof(ht_output_t, aileron) == 32u, "ht_output_t layout");
 _Static_assert(offsetof(ht_output_t, flags) == 38u, "ht_output_t layout");
-_Static_assert(sizeof(ht_output_t) == 40u, "ht_output_t layout");
+_Static_assert(offsetof(ht_output_t, roll_in_rate_rad_s) == 40u, "ht_output_t layout");
+_Static_assert(sizeof(ht_output_t) == 48u, "ht_output_t layout");
 _Static_assert(sizeof(law_q14_output_t) == 12u, "law_q14_output_t layout");

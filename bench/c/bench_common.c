@@ -86,6 +86,14 @@ int32_t bench_setup(void)
     p.schedule = 1u;
     p.max_tilt = 4 * Q16_ONE;
     p.pitch_mode = (uint8_t)HT_PITCH_EARTH_FRAME;
+#if defined(BENCH_OPTIONS) && BENCH_OPTIONS
+    /* bench.py --options: every option of docs/control-law.md "Extensions
+     * beyond the seed" on, to measure what they cost */
+    p.roll_in = 1u;
+    p.roll_in_rate_max_rad_s = 2 * Q16_ONE;
+    p.kp_sideslip = Q16_FROM_REAL(1.0);
+    p.vertical_fade = Q16_FROM_REAL(0.1);
+#endif
     if (ht_init(&bench_ctl, &p, NULL) != HT_OK) {
         return 1;
     }

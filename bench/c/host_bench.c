@@ -39,7 +39,7 @@ static ht_input_t *read_inputs(const char *path, size_t *count)
     }
     size_t cap = 1024u, n = 0u;
     ht_input_t *v = malloc(cap * sizeof *v);
-    unsigned char rec[24];
+    unsigned char rec[28];
     while (v != NULL && fread(rec, 1u, sizeof rec, f) == sizeof rec) {
         if (n == cap) {
             cap *= 2u;
@@ -62,6 +62,8 @@ static ht_input_t *read_inputs(const char *path, size_t *count)
         memcpy(&in.airspeed_cm_s, rec + 12, 2u);
         memcpy(&in.gyro_rad_s[0], rec + 14, 6u);
         in.inverted = rec[20];
+        memcpy(&in.turn_accel_rad_s2, rec + 22, 2u);
+        memcpy(&in.accel_lat_g, rec + 24, 2u);
         v[n++] = in;
     }
     fclose(f);

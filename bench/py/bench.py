@@ -106,10 +106,10 @@ def run(cmd: list[str], cwd: Optional[Path] = None, check: bool = True,
 # Inputs
 # --------------------------------------------------------------------------
 
-INPUT_FMT = "<hhhhihhhhB3x"  # ht_input_t, 24 bytes (checked by _Static_assert)
+INPUT_FMT = "<hhhhihhhhBxhh2x"  # ht_input_t, 28 bytes (checked by _Static_assert)
 F32_FMT = "<9fi"
 F64_FMT = "<9dii"
-OUTPUT_FMT = "<h2xi15hB1x"  # ht_output_t, 40 bytes
+OUTPUT_FMT = "<h2xi15hB1x"  # ht_output_t's first 40 bytes (the seed's fields; 48 in all)
 Q14_OUTPUT_FMT = "<6h"  # law_q14_output_t, 12 bytes
 
 # Columns of host_bench's dump (one row per input).
@@ -138,7 +138,29 @@ def q16(v: float) -> int:
     return q(v, 65536, -(2 ** 31), 2 ** 31 - 1)
 
 
-Input = tuple[int, int, int, int, int, int, int, int, int, int]
+# x, y, z, turn, pitch, airspeed, gyro x/y/z, inverted, and the options'
+# inputs turn_accel (Q11 rad/s^2), accel_lat (Q14 g): 0 unless --options.
+Input = tuple[int, ...]
+
+# --options (docs/control-law.md "Extensions beyond the seed"): the law's
+# options on in bench_setup (-DBENCH_OPTIONS=1) and their inputs drawn in the
+# realistic set, to measure what they cost. The float and double laws do not
+# have them: their agreement with the fixed law is then not checked.
+BENCH_DEFS: list[str] = []
+
+
+def with_option_inputs(inputs: list[tuple[int, ...]], seed: int) -> list[Input]:
+    """The options' inputs: 0 (the default), or with --options a turn
+    acceleration (half the steps, U(-3, 3) rad/s^2) and a lateral specific
+    force (N(0, 0.05) g) on every realistic step; edge cases at the ends."""
+    if not BENCH_DEFS:
+        return [(*i, 0, 0) for i in inputs]
+    rng = random.Random(seed + 17)
+    out: list[Input] = []
+    for i in inputs:
+        ta = q11(rng.uniform(-3.0, 3.0)) if rng.random() < 0.5 else 0
+        out.append((*i, ta, q14(rng.gauss(0.0, 0.05))))
+    return out
 
 
 def realistic_inputs(n: int, seed: int) -> list[Input]:
@@ -203,7 +225,7 @@ def pack_inputs(inputs: list[Input]) -> bytes:
 
 
 def to_real(i: Input) -> tuple[float, ...]:
-    x, y, z, w, p, s, gx, gy, gz, inv = i
+    x, y, z, w, p, s, gx, gy, gz, inv = i[:10]
     return (x / 16384.0, y / 16384.0, z / 16384.0, w / 2048.0, p / 65536.0, s / 100.0,
             gx / 2048.0, gy / 2048.0, gz / 2048.0, 1 if inv else 0)
 
@@ -292,7 +314,8 @@ def build_arm(core: Core, opt: str, outroot: Path) -> ArmBuild:
         shutil.rmtree(outdir)
     flags = [*core.flags, f"-{opt}", "-ffunction-sections", "-fdata-sections", "-g"]
     lib = build_library(ARM_CC, flags, outdir / "lib")
-    bflags = [*STRICT, *flags, "-fno-math-errno", f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
+    bflags = [*STRICT, *flags, *BENCH_DEFS, "-fno-math-errno",
+              f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
               "-I", str(ROOT / "include"), "-I", str(CDIR), "-fstack-usage"]
     hobjs: list[Path] = []
     for name in ("bench_common.c", "arm_harness.c", "law_f32.c", "law_f64.c", "law_q14.c"):
@@ -907,7 +930,7 @@ def build_host(outroot: Path) -> tuple[Path, LibBuild]:
     objs = []
     for name in ("bench_common.c", "law_f32.c", "law_f64.c", "law_q14.c", "host_bench.c"):
         obj = outdir / (Path(name).stem + ".o")
-        run(["gcc", *STRICT, "-O2", "-g", f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
+        run(["gcc", *STRICT, *BENCH_DEFS, "-O2", "-g", f"-DBENCH_HAVE_OS={1 if lib.have_os else 0}",
              "-I", str(ROOT / "include"), "-I", str(CDIR), "-c", str(CDIR / name), "-o", str(obj)])
         objs.append(obj)
     exe = outdir / "host_bench"
@@ -982,7 +1005,7 @@ def check_results(res: dict[str, Any], ref: list[list[str]], n_real: int) -> lis
             if max(abs(a - b) for a, b in zip(vals[k], fixed)) > 0.01:
                 bad += 1
         res.setdefault("float_agree", {})[wl] = bad
-        if bad > max(1, n_real // 100):
+        if bad > max(1, n_real // 100) and not BENCH_DEFS:
             probs.append(f"{tag}: the {wl} law differs from the fixed law by > 0.01 on "
                          f"{bad} of {n_real} realistic steps")
     return probs
@@ -1331,10 +1354,15 @@ def main(argv: Optional[list[str]] = None) -> int:
                     help="emulator processes (default: CPU count)")
     ap.add_argument("--out", type=Path, default=BENCH / "out", help="output dir (bench/out)")
     ap.add_argument("--top", type=int, default=10, help="profile rows per core (default 10)")
+    ap.add_argument("--options", action="store_true",
+                    help="the law's options on (roll_in, kp_sideslip, vertical_fade) with their "
+                         "inputs drawn: what they cost (the float laws' agreement is not checked)")
     ap.add_argument("--update-readme", action="store_true",
                     help="also write the tables into bench/README.md (between its "
                          "bench:results markers)")
     args = ap.parse_args(argv)
+    if args.options and args.update_readme:
+        ap.error("--options measures the options; the README's figures are the seed's")
 
     quick = args.quick
     n_real = args.steps if args.steps is not None else (200 if quick else 10_000)
@@ -1365,7 +1393,13 @@ def main(argv: Optional[list[str]] = None) -> int:
     problems: list[str] = []
     notes: list[str] = []
     try:
-        inputs = realistic_inputs(n_real, args.seed) + edge_inputs()
+        if args.options:
+            BENCH_DEFS.append("-DBENCH_OPTIONS=1")
+        inputs = (with_option_inputs(realistic_inputs(n_real, args.seed), args.seed) +
+                  with_option_inputs(edge_inputs(), args.seed))
+        if args.options:
+            inputs += [(0, -16384, 0, 1024, 0, 1500, 0, 0, 0, 0, 32767, 32767),
+                       (0, 0, 16384, 0, 0, 1500, 0, 0, 0, 0, -32768, -32768)]
         n_edge = len(inputs) - n_real
         inputs_bin = out / "inputs.bin"
         inputs_bin.write_bytes(pack_inputs(inputs))
