@@ -319,9 +319,16 @@ static void pitch_tilt_cross(const ht_input_t *in, const target_t *tg, int32_t b
  * = 1/8 LSB). The target rate w_d is Q25 (exact when the tilt limit does not
  * act) and s_ff Q25 (below 2^-30 relative).
  */
-static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis, int32_t s_ff_q25,
-                           int32_t e_q28, int32_t rate_d_q25, q11_t gyro_q11, bool wide)
+/* Or'ed into axis_demand's axis: a term is added after it (the sideslip
+ * rudder), so its sum must not saturate early (a flag rather than a seventh
+ * argument, which the step would pass on the stack). */
+#define AXIS_WIDE 4u
+
+static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis_flags, int32_t s_ff_q25,
+                           int32_t e_q28, int32_t rate_d_q25, q11_t gyro_q11)
 {
+    const unsigned axis = axis_flags & 3u;
+    const bool wide = (axis_flags & AXIS_WIDE) != 0u;
     const q16_t kp = ctl->gains.kp[axis];
     const q16_t kff = ctl->gains.kff[axis];
     const q16_t kd = ctl->gains.kd[axis];
@@ -392,13 +399,19 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     for (unsigned i = 0; i < 3u; i++) {
         rate_d[i] = qi_mul32x16_fit(turn.omega_q26, row[i], 15u); /* <= 16 * 2 * 2^25 = 2^30 */
     }
+    o->rate_x_rad_s = q11_from_q25(rate_d[0]);
+    o->rate_y_rad_s = q11_from_q25(rate_d[1]);
+    o->rate_z_rad_s = q11_from_q25(rate_d[2]);
 
     /* Option roll-in: the target's own bank rate joins the roll axis' target
      * rate (feed-forward and damping); none while the tilt limit holds the
-     * target. |rate_d[1] + roll_in| <= 2^30 + 2^28 in Q25. */
-    int32_t roll_in_q25 = 0;
+     * target. |rate_d[1] + roll_in| <= 2^30 + 2^28 in Q25. The outputs are
+     * written where they are known (fewer values live across the step). */
+    o->roll_in_rate_rad_s = 0;
     if (ctl->roll_in != 0u && (flags & (uint8_t)HT_F_TILT_LIMITED) == 0u) {
-        roll_in_q25 = ht_opt_roll_in_q25(ctl, in->turn_accel_rad_s2, s_cm_s, tg.c1, &flags);
+        const int32_t r = ht_opt_roll_in_q25(ctl, in->turn_accel_rad_s2, s_cm_s, tg.c1, &flags);
+        rate_d[1] += r;
+        o->roll_in_rate_rad_s = q11_from_q25(r);
     }
 
     /* 5-8. The error vector e = [pitch_x, roll, pitch_z]. */
@@ -406,11 +419,12 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     e[1] = roll_error(in, &tg, &roll_dot, &roll_cross, &flags);
     /* Option vertical fade: the roll error (Eq. 9's +/-1 near a vertical
      * fuselage) times min(1, sqrt(X^2 + Z^2) / vertical_fade). */
-    int32_t fade_q30 = Q30_ONE;
+    o->roll_fade = Q14_ONE;
     if (ctl->fade2_q28 != 0u) {
-        fade_q30 = ht_opt_fade_q30(ctl, in->x, in->z, &flags);
-        if (fade_q30 < Q30_ONE) {
-            e[1] = qi_mul32_fit(e[1], fade_q30, 30u); /* |.| <= 2^29 */
+        const int32_t f = ht_opt_fade_q30(ctl, in->x, in->z, &flags);
+        o->roll_fade = q14_from_q30_fit(f);
+        if (f < Q30_ONE) {
+            e[1] = qi_mul32_fit(e[1], f, 30u); /* |.| <= 2^29 */
         }
     }
     if (ctl->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) {
@@ -425,19 +439,20 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
 
     /* 10-11. Demands and surfaces. */
     o->elevator = surface_from_q20(
-        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0], false)),
+        qi_sub_sat32(0, axis_demand(ctl, 0u, s_ff_q25, e[0], rate_d[0], in->gyro_rad_s[0])),
         &flags);
     o->aileron = surface_from_q20(
-        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1] + roll_in_q25, in->gyro_rad_s[1], false),
-        &flags);
+        axis_demand(ctl, 1u, s_ff_q25, e[1], rate_d[1], in->gyro_rad_s[1]), &flags);
     /* Option sideslip: rudder toward zero lateral specific force. */
-    const bool sideslip_on = (ctl->kp_sideslip != 0);
-    int32_t rudder_q20 =
-        axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2], sideslip_on);
-    int32_t sideslip_q20 = 0;
-    if (sideslip_on) {
-        sideslip_q20 = ht_opt_sideslip_q20(ctl, in->accel_lat_g);
-        rudder_q20 = qi_add_sat32(rudder_q20, sideslip_q20);
+    int32_t rudder_q20;
+    if (ctl->kp_sideslip == 0) {
+        rudder_q20 = axis_demand(ctl, 2u, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]);
+        o->sideslip_rudder = 0;
+    } else {
+        const int32_t ss_q20 = ht_opt_sideslip_q20(ctl, in->accel_lat_g);
+        rudder_q20 = qi_add_sat32(
+            axis_demand(ctl, 2u | AXIS_WIDE, s_ff_q25, e[2], rate_d[2], in->gyro_rad_s[2]), ss_q20);
+        o->sideslip_rudder = qi_sat16(qi_rshift_round(ss_q20, 6u));
     }
     o->rudder = surface_from_q20(rudder_q20, &flags);
 
@@ -446,17 +461,11 @@ void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out)
     o->tilt_x = q14_from_q30_fit(tg.x);
     o->tilt_y = q14_from_q30_fit(tg.y);
     o->tilt_z = q14_from_q30_fit(tg.z);
-    o->rate_x_rad_s = q11_from_q25(rate_d[0]);
-    o->rate_y_rad_s = q11_from_q25(rate_d[1]);
-    o->rate_z_rad_s = q11_from_q25(rate_d[2]);
     o->roll_dot = q14_from_q28(roll_dot);
     o->roll_cross = q14_from_q28(roll_cross);
     o->roll_error = q14_from_q28(e[1]);
     o->pitch_error = q14_from_q28(pe);
     o->pitch_body_x = q14_from_q28(e[0]);
     o->pitch_body_z = q14_from_q28(e[2]);
-    o->roll_in_rate_rad_s = q11_from_q25(roll_in_q25);
-    o->roll_fade = q14_from_q30_fit(fade_q30);
-    o->sideslip_rudder = qi_sat16(qi_rshift_round(sideslip_q20, 6u));
     o->flags = flags;
 }
