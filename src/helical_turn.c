@@ -344,7 +344,11 @@ static int32_t axis_demand(const ht_controller_t *ctl, unsigned axis_flags, int3
              * must not meet a demand saturated below it: the sum holds
              * 129 / s_ff (Q23 when s_ff >= 1, else Q15 since s_ff >= 2^-8.4),
              * its rounding at most 2^-24 * 32 or 2^-16 (1/4 LSB) */
-            fmt = (fmt == 29u) ? 23u : 15u;
+            if (fmt == 29u) {
+                fmt = 23u;
+            } else {
+                fmt = 15u;
+            }
         }
         const int32_t sum = qi_dot3((kff + kd) * 8, rate_d_q25, -kd * 256, (int32_t)gyro_q11 * 512,
                                     -kp, e_q28, 44u - fmt);
