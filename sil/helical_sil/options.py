@@ -45,7 +45,7 @@ from helical_sil import params
 # kp_sideslip's and vertical_fade's "on" values are a starting point, --on overrides.
 OPTIONS: tuple[tuple[str, str, float], ...] = (
     ("roll_in", "law", 1.0),
-    ("kp_sideslip", "law", 2.0),
+    ("kp_sideslip", "law", 1.0),
     ("turn_trim", "guidance", 1.0),
     ("vertical_fade", "law", 0.1),
 )
@@ -62,6 +62,10 @@ METRICS = ("entry_ratio", "bank_ratio", "turn_rate_error_pct", "steady_sideslip_
            # the whole run: what the waypoint scenarios (guided, no constant turn
            # command) can show -- the run's sideslip RMS and largest cross-track
            "sideslip_rms_deg", "cross_track_max_m")
+# ... and by more than this fraction of the seed's value: a few per cent of a
+# large number (the heading law's 200-450 m cross-track at the corners, tens of
+# metres of altitude) is the path of a perturbed flight, not the option's effect
+REL_TOLERANCE = 0.05
 LIMIT_CYCLE_RMSE_DEG_S = 0.5  # tune.GOALS' oscillation goal
 TURN_MIN_DEG_S = 1.0
 
@@ -271,7 +275,7 @@ def row_metrics(m: dict[str, Any], m2: dict[str, Any] | None,
 
 def compare(seed: dict[str, Any], other: dict[str, Any]) -> tuple[list[str], list[str]]:
     """Where a variant helps and where it hurts against the seed's row, by
-    TOLERANCE; a metric the seed measured and the variant cannot (an entry
+    more than TOLERANCE and REL_TOLERANCE of the seed's value; a metric the seed measured and the variant cannot (an entry
     never reached: inf or None) hurts, and so does a new limit cycle or
     ground contact."""
     helps, hurts = [], []
@@ -287,9 +291,10 @@ def compare(seed: dict[str, Any], other: dict[str, Any]) -> tuple[list[str], lis
             if not math.isinf(b):
                 helps.append(k)
             continue
-        if b > a + TOLERANCE[k]:
+        tol = max(TOLERANCE[k], REL_TOLERANCE * abs(a))
+        if b > a + tol:
             hurts.append(k)
-        elif b < a - TOLERANCE[k]:
+        elif b < a - tol:
             helps.append(k)
     if other.get("limit_cycle_2x") and not seed.get("limit_cycle_2x"):
         hurts.append("limit_cycle_2x")

@@ -162,6 +162,13 @@ def test_helps_and_hurts_against_the_seed() -> None:
     helps, hurts = options.compare(seed, {**seed, "entry_ratio": math.inf,
                                           "limit_cycle_2x": True})
     assert helps == [] and hurts == ["entry_ratio", "limit_cycle_2x"]
+    # beyond the absolute tolerance but within 5 % of a large value: no effect
+    big = {"cross_track_max_m": 300.0, "entry_altitude_loss_m": 40.0}
+    assert options.compare(big, {"cross_track_max_m": 314.0,
+                                 "entry_altitude_loss_m": 38.5}) == ([], [])
+    assert options.compare(big, {"cross_track_max_m": 316.0,
+                                 "entry_altitude_loss_m": 37.9}) == (
+        ["entry_altitude_loss_m"], ["cross_track_max_m"])
     table = {"a": {"seed": seed, "x": {**seed, "entry_ratio": 1.0}},
              "b": {"seed": seed, "x": dict(seed)}}
     v = options.verdicts(table, ["x"])
