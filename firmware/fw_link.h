@@ -89,12 +89,13 @@ typedef struct {
 /* Counters (saturating at UINT32_MAX). */
 typedef struct {
     uint32_t rx_ok;           /* frames with a good CRC, accepted */
-    uint32_t rx_dropped;      /* = the five below */
+    uint32_t rx_dropped;      /* = the four below */
     uint32_t rx_bad_crc;      /* a known id whose CRC does not match (also truncated frames) */
     uint32_t rx_garbled;      /* bad length for its id, unknown flags, a signed frame */
     uint32_t rx_unknown_id;   /* an id that is not in common.xml */
     uint32_t rx_wrong_target; /* addressed to another system or component */
-    uint32_t rx_bad_content;  /* a good frame whose fields cannot be honoured (e.g. NaN) */
+    uint32_t rx_bad_content;  /* accepted (in rx_ok), but refused: a NaN, a value out of range,
+                                 an unknown parameter, an unsupported command */
     uint32_t tx_frames;       /* frames queued */
     uint32_t tx_overflow;     /* frames not queued: the transmit queue was full */
 } fw_link_counters_t;
