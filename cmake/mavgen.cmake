@@ -12,8 +12,8 @@
 #   MAVLINK_NO_CONVERSION_HELPERS  no float conversion helpers (mavlink_conversions.h)
 #   MAVLINK_NO_SIGN_PACKET, MAVLINK_NO_SIGNATURE_CHECK  no SHA-256: the link
 #                                  drops signed frames (fw_link_rx.c)
-#   MAVLINK_CHECK_MESSAGE_LENGTH   a length outside the id's [min, max] is a
-#                                  framing error, before the payload is read
+# (Not MAVLINK_CHECK_MESSAGE_LENGTH: MAVLink 2 trims a payload's trailing
+# zeros, so a valid frame may be shorter than its id's minimum length.)
 #
 # HT_MAVGEN_PYTHON is the interpreter that has pymavlink: by default the
 # project's venv (scripts/setup_venv.sh creates it, with the version pinned
@@ -98,6 +98,5 @@ add_custom_target(ht_mavlink_gen DEPENDS ${_ht_outputs})
 add_library(ht_mavlink INTERFACE)
 target_include_directories(ht_mavlink SYSTEM INTERFACE "${HT_MAVLINK_GEN_DIR}")
 target_compile_definitions(ht_mavlink INTERFACE
-  MAVLINK_NO_CONVERSION_HELPERS MAVLINK_NO_SIGN_PACKET MAVLINK_NO_SIGNATURE_CHECK
-  MAVLINK_CHECK_MESSAGE_LENGTH)
+  MAVLINK_NO_CONVERSION_HELPERS MAVLINK_NO_SIGN_PACKET MAVLINK_NO_SIGNATURE_CHECK)
 add_dependencies(ht_mavlink ht_mavlink_gen)

@@ -117,21 +117,14 @@ void fw_link_rx(fw_link_t *l, const uint8_t *bytes, size_t n)
         return;
     }
     for (size_t i = 0u; i < n; ++i) {
-        const uint8_t before = (uint8_t)l->rx_status.parse_state;
+        const mavlink_parse_state_t before = l->rx_status.parse_state;
         const uint8_t r =
             mavlink_frame_char_buffer(&l->rx_msg, &l->rx_status, bytes[i], NULL, NULL);
-        if (l->rx_status.parse_error != l->rx_parse_errors) {
-            l->rx_parse_errors = l->rx_status.parse_error;
-            /* the length check follows the id: an id with no entry is unknown */
-            const int at_id = ((before == (uint8_t)MAVLINK_PARSE_STATE_GOT_MSGID2) ||
-                               (before == (uint8_t)MAVLINK_PARSE_STATE_GOT_COMPID))
-                                  ? 1
-                                  : 0;
-            if ((at_id != 0) && (mavlink_get_msg_entry(l->rx_msg.msgid) == NULL)) {
-                drop(l, &l->count.rx_unknown_id);
-            } else {
-                drop(l, &l->count.rx_garbled);
-            }
+        if ((before == MAVLINK_PARSE_STATE_GOT_LENGTH) &&
+            (l->rx_status.parse_state == MAVLINK_PARSE_STATE_IDLE)) {
+            /* unknown incompat flags: the parser dropped the frame (its own
+             * error count is cleared on return) */
+            drop(l, &l->count.rx_garbled);
         }
         if (r == (uint8_t)MAVLINK_FRAMING_OK) {
             frame_ok(l, &l->rx_msg);

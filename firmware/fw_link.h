@@ -78,8 +78,8 @@ typedef enum {
 #define FW_LINK_MAX_WAYPOINTS 32u
 typedef struct {
     int32_t lat_e7, lon_e7;
-    int32_t z_cm;      /* the item's altitude, as uploaded (frame says its datum) */
-    uint8_t frame;     /* MAV_FRAME_GLOBAL_INT or MAV_FRAME_GLOBAL_RELATIVE_ALT_INT */
+    int32_t z_cm;  /* the item's altitude, as uploaded (frame says its datum) */
+    uint8_t frame; /* MAV_FRAME_GLOBAL_INT or MAV_FRAME_GLOBAL_RELATIVE_ALT_INT */
 } fw_link_item_t;
 
 /* Transmit queue: whole frames only (a frame that does not fit is counted
@@ -90,8 +90,9 @@ typedef struct {
 typedef struct {
     uint32_t rx_ok;           /* frames with a good CRC, accepted */
     uint32_t rx_dropped;      /* = the four below */
-    uint32_t rx_bad_crc;      /* a known id whose CRC does not match (also truncated frames) */
-    uint32_t rx_garbled;      /* bad length for its id, unknown flags, a signed frame */
+    uint32_t rx_bad_crc;      /* a known id whose CRC does not match (also a truncated frame,
+                                 whose length then runs into the next one) */
+    uint32_t rx_garbled;      /* unknown incompat flags, a signed frame */
     uint32_t rx_unknown_id;   /* an id that is not in common.xml */
     uint32_t rx_wrong_target; /* addressed to another system or component */
     uint32_t rx_bad_content;  /* accepted (in rx_ok), but refused: a NaN, a value out of range,
@@ -107,14 +108,14 @@ typedef int (*fw_link_save_fn)(void *ctx, const fw_config_t *cfg, const fw_link_
 
 /* Mission protocol state (fw_link_mission.c). */
 typedef struct {
-    uint8_t uploading;       /* 1: a MISSION_COUNT started an upload */
+    uint8_t uploading; /* 1: a MISSION_COUNT started an upload */
     uint8_t partner_sysid, partner_compid;
-    uint16_t count;          /* items of the upload */
-    uint16_t next;           /* the item requested */
-    uint8_t retries;         /* requests re-sent for this item */
-    uint32_t deadline_ms;    /* when the request is re-sent */
-    uint8_t apply_pending;   /* an accepted list waits for the home position */
-    uint16_t last_current;   /* the current item last reported (MISSION_ITEM_REACHED) */
+    uint16_t count;        /* items of the upload */
+    uint16_t next;         /* the item requested */
+    uint8_t retries;       /* requests re-sent for this item */
+    uint32_t deadline_ms;  /* when the request is re-sent */
+    uint8_t apply_pending; /* an accepted list waits for the home position */
+    uint16_t last_current; /* the current item last reported (MISSION_ITEM_REACHED) */
 } fw_link_mission_t;
 
 typedef struct {
@@ -125,7 +126,6 @@ typedef struct {
     /* receive */
     mavlink_status_t rx_status;
     mavlink_message_t rx_msg;
-    uint16_t rx_parse_errors; /* rx_status.parse_error last seen */
     /* send */
     mavlink_status_t tx_status;
     mavlink_message_t tx_msg;

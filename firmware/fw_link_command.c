@@ -57,9 +57,9 @@ static void autopilot_version(fw_link_t *l)
 {
     mavlink_autopilot_version_t v;
     (void)memset(&v, 0, sizeof v);
-    v.capabilities = (uint64_t)(MAV_PROTOCOL_CAPABILITY_MISSION_INT |
-                                MAV_PROTOCOL_CAPABILITY_PARAM_FLOAT |
-                                MAV_PROTOCOL_CAPABILITY_MAVLINK2);
+    v.capabilities =
+        (uint64_t)(MAV_PROTOCOL_CAPABILITY_MISSION_INT | MAV_PROTOCOL_CAPABILITY_PARAM_FLOAT |
+                   MAV_PROTOCOL_CAPABILITY_MAVLINK2);
     (void)FW_LINK_QUEUE(l, AUTOPILOT_VERSION, v);
 }
 
@@ -79,7 +79,7 @@ static uint8_t storage(fw_link_t *l, const mavlink_command_long_t *c)
         return (uint8_t)MAV_RESULT_UNSUPPORTED;
     }
     return (l->save(l->save_ctx, l->cfg, &l->params) == 0) ? (uint8_t)MAV_RESULT_ACCEPTED
-                                                            : (uint8_t)MAV_RESULT_FAILED;
+                                                           : (uint8_t)MAV_RESULT_FAILED;
 }
 
 static uint8_t message_interval(fw_link_t *l, const mavlink_command_long_t *c)
@@ -127,8 +127,8 @@ static void command_long(fw_link_t *l, const mavlink_message_t *msg)
         int32_t base = 0;
         int32_t custom = 0;
         if ((param_int(&c, offsetof(mavlink_command_long_t, param1), &base) != 0) ||
-            (param_int(&c, offsetof(mavlink_command_long_t, param2), &custom) != 0) ||
-            (base < 0) || (custom < 0)) {
+            (param_int(&c, offsetof(mavlink_command_long_t, param2), &custom) != 0) || (base < 0) ||
+            (custom < 0)) {
             result = (uint8_t)MAV_RESULT_DENIED;
         } else {
             result = set_mode(l, mode_of((uint32_t)base, (uint32_t)custom));

@@ -226,8 +226,7 @@ static void send_item(fw_link_t *l, const mavlink_message_t *msg, uint16_t seq, 
     it.autocontinue = 1u;
     it.x = s->lat_e7;
     it.y = s->lon_e7;
-    fw_link_put_f32(&it, offsetof(mavlink_mission_item_int_t, z),
-                    fw_f32_from_ratio(s->z_cm, 100u));
+    fw_link_put_f32(&it, offsetof(mavlink_mission_item_int_t, z), fw_f32_from_ratio(s->z_cm, 100u));
     it.mission_type = type;
     (void)FW_LINK_QUEUE(l, MISSION_ITEM_INT, it);
 }

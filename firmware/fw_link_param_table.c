@@ -70,17 +70,16 @@ typedef struct {
 /* clang-format on */
 
 static const row_t rows[] = {
-    HT_PARAMS_LAW(ROW_LAW) HT_PARAMS_DCM(ROW_DCM) HT_PARAMS_GUIDE(ROW_GUIDE)
-        HT_PARAMS_ALT(ROW_ALT) HT_PARAMS_SPEED(ROW_SPEED) HT_PARAMS_MODES(ROW_MODES)
-            HT_PARAMS_FBW(ROW_FBW) HT_PARAMS_NAV(ROW_NAV) HT_PARAMS_AOA(ROW_AOA)
-                HT_PARAMS_LINK(ROW_LINK)};
+    HT_PARAMS_LAW(ROW_LAW) HT_PARAMS_DCM(ROW_DCM) HT_PARAMS_GUIDE(ROW_GUIDE) HT_PARAMS_ALT(ROW_ALT)
+        HT_PARAMS_SPEED(ROW_SPEED) HT_PARAMS_MODES(ROW_MODES) HT_PARAMS_FBW(ROW_FBW)
+            HT_PARAMS_NAV(ROW_NAV) HT_PARAMS_AOA(ROW_AOA) HT_PARAMS_LINK(ROW_LINK)};
 
 #define ROW_COUNT ((uint16_t)(sizeof rows / sizeof rows[0]))
 
 static const uint16_t group_count[G_COUNT] = {
-    (uint16_t)HT_PARAM_LAW_COUNT,   (uint16_t)HT_PARAM_DCM_COUNT,   (uint16_t)HT_PARAM_GUIDE_COUNT,
-    (uint16_t)HT_PARAM_ALT_COUNT,   (uint16_t)HT_PARAM_SPEED_COUNT, (uint16_t)HT_PARAM_MODES_COUNT,
-    (uint16_t)HT_PARAM_FBW_COUNT,   (uint16_t)HT_PARAM_NAV_COUNT,   (uint16_t)HT_PARAM_AOA_COUNT,
+    (uint16_t)HT_PARAM_LAW_COUNT, (uint16_t)HT_PARAM_DCM_COUNT,   (uint16_t)HT_PARAM_GUIDE_COUNT,
+    (uint16_t)HT_PARAM_ALT_COUNT, (uint16_t)HT_PARAM_SPEED_COUNT, (uint16_t)HT_PARAM_MODES_COUNT,
+    (uint16_t)HT_PARAM_FBW_COUNT, (uint16_t)HT_PARAM_NAV_COUNT,   (uint16_t)HT_PARAM_AOA_COUNT,
     (uint16_t)HT_PARAM_LINK_COUNT};
 
 static const char *const group_prefix[G_COUNT] = {"LAW_", "DCM_", "GDE_", "ALT_", "SPD_",
@@ -199,8 +198,7 @@ static uint8_t *field_of(const fw_link_t *l, uint16_t index)
 {
     int gid = 0;
     const group_t g = group_of(index, &gid);
-    uint8_t *base =
-        (g == G_LINK) ? (uint8_t *)(uintptr_t)&l->params : (uint8_t *)(uintptr_t)l->cfg;
+    uint8_t *base = (g == G_LINK) ? (uint8_t *)(uintptr_t)&l->params : (uint8_t *)(uintptr_t)l->cfg;
     return &base[rows[index].offset];
 }
 
@@ -273,8 +271,8 @@ static int reinit_modes(fw_link_t *l)
     fw_t *fw = l->fw;
     const fw_config_t *cfg = l->cfg;
     const uint8_t pm = (cfg->modes_pitch_mode != 0u) ? 1u : 0u;
-    return ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints,
-                         cfg->waypoint_count, &fw->modes_bad);
+    return ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints, cfg->waypoint_count,
+                         &fw->modes_bad);
 }
 
 static int reinit_law(fw_link_t *l)

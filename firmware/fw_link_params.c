@@ -12,7 +12,8 @@ static const ht_param_info_t link_rows[HT_PARAM_LINK_COUNT] = {HT_PARAMS_LINK(HT
 void ht_link_params_default(fw_link_params_t *p)
 {
     if (p != NULL) {
-        // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded constants
+        // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's defaults, folded
+        // constants
         HT_PARAMS_LINK(HT_PARAM_X_SET_DEFAULT)
     }
 }

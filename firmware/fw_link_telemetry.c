@@ -196,8 +196,7 @@ static void vfr_hud(fw_link_t *l)
                     fw_f32_from_ratio(n->airspeed_cm_s, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, groundspeed),
                     fw_f32_from_ratio((int64_t)ground_cm_s, 100u));
-    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, alt),
-                    fw_f32_from_ratio(n->altitude_cm, 100u));
+    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, alt), fw_f32_from_ratio(n->altitude_cm, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, climb), fw_f32_from_ratio(n->climb_cm_s, 100u));
     v.heading = (int16_t)(l->last.est.yaw_cdeg / 100u);
     const int32_t thr = (int32_t)l->last.throttle;

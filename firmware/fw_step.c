@@ -327,8 +327,8 @@ static void gcs_mode_pulse(fw_t *fw, ht_modes_input_t *mi)
     }
     const uint16_t *thr = fw->modes.mode_threshold_us;
     const uint8_t mode = (uint8_t)(fw->gcs_mode - 1u);
-    mi->rc_us[input] = (mode == (uint8_t)HT_MODE_MANUAL) ? (uint16_t)OS_RC_VALID_MIN_US
-                                                         : thr[mode - 1u];
+    mi->rc_us[input] =
+        (mode == (uint8_t)HT_MODE_MANUAL) ? (uint16_t)OS_RC_VALID_MIN_US : thr[mode - 1u];
 }
 
 /* The pilot: RC -> flight modes (targets, holds, AoA model) -> upset guard

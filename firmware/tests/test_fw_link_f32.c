@@ -67,7 +67,8 @@ static void test_ratio_random_int32_and_wide_numerators(void)
     for (unsigned k = 0u; k < 2000000u; ++k) {
         const uint32_t den = dens[k % (sizeof dens / sizeof dens[0])];
         const uint64_t r = next_random();
-        const unsigned width = (unsigned)(r >> 58u) + 2u; /* 2 .. 65 bits, clipped to 53: exact in double */
+        const unsigned width =
+            (unsigned)(r >> 58u) + 2u; /* 2 .. 65 bits, clipped to 53: exact in double */
         int64_t num = (int64_t)(next_random() >> (64u - ((width > 53u) ? 53u : width)));
         if ((r & 1u) != 0u) {
             num = -num;
