@@ -631,10 +631,6 @@ size_t sil_link_tx(sil_board_t *b, uint8_t *buf, size_t cap)
 /* fw_link_counters_t's fields, by name, in its order */
 #define SIL_COUNTER_COUNT 9
 
-static const char *const sil_counter_names[SIL_COUNTER_COUNT] = {
-    "rx_ok",           "rx_dropped",     "rx_bad_crc", "rx_garbled", "rx_unknown_id",
-    "rx_wrong_target", "rx_bad_content", "tx_frames",  "tx_overflow"};
-
 int sil_link_counter_count(void)
 {
     return SIL_COUNTER_COUNT;
@@ -642,7 +638,10 @@ int sil_link_counter_count(void)
 
 const char *sil_link_counter_name(int index)
 {
-    return (index >= 0 && index < SIL_COUNTER_COUNT) ? sil_counter_names[index] : NULL;
+    static const char *const names[SIL_COUNTER_COUNT] = {
+        "rx_ok",           "rx_dropped",     "rx_bad_crc", "rx_garbled", "rx_unknown_id",
+        "rx_wrong_target", "rx_bad_content", "tx_frames",  "tx_overflow"};
+    return (index >= 0 && index < SIL_COUNTER_COUNT) ? names[index] : NULL;
 }
 
 uint32_t sil_link_counter(const sil_board_t *b, int index)
