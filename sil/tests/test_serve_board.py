@@ -74,3 +74,12 @@ def test_serve_flies_the_scenarios_modes_or_its_aircrafts() -> None:
     mc = serve_modes(level)
     assert mc.waypoints == [] and mc.cruise_m_s == level.airspeed_m_s
     assert mc.loiter_radius_m == 400.0  # the c172p file's [nav], not the table's 60 m
+
+
+def test_serve_has_help(capsys: pytest.CaptureFixture[str]) -> None:
+    from helical_sil.cli import main
+    with pytest.raises(SystemExit) as e:
+        main(["serve", "--help"])
+    assert e.value.code == 0
+    out = capsys.readouterr().out
+    assert "--mavlink" in out and "udpin:HOST:PORT" in out and "--speed" in out
