@@ -27,7 +27,8 @@ int fw_link_init(fw_link_t *l, fw_t *fw, fw_config_t *cfg_live, uint8_t sysid, u
 
 /* --- transmit -------------------------------------------------------------- */
 
-int fw_link_has_room(const fw_link_t *l, uint8_t len)
+/* Room for a frame of this payload length (header, CRC). */
+static int fw_link_has_room(const fw_link_t *l, uint8_t len)
 {
     const uint32_t need = (uint32_t)MAVLINK_NUM_NON_PAYLOAD_BYTES + (uint32_t)len;
     return ((uint32_t)l->tx_len + need <= (uint32_t)FW_LINK_TX_BYTES) ? 1 : 0;

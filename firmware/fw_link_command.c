@@ -48,7 +48,8 @@ static uint8_t set_mode(fw_link_t *l, int32_t mode)
     if ((mode < 0) || (mode >= (int32_t)HT_MODE_COUNT)) {
         return (uint8_t)MAV_RESULT_DENIED;
     }
-    l->fw->gcs_mode = (uint8_t)(mode + 1);
+    const uint8_t m8 = (uint8_t)mode; /* [0, 3] */
+    l->fw->gcs_mode = (uint8_t)(m8 + 1u);
     l->fw->gcs_switch = UINT8_MAX; /* the switch's position is read at the next step */
     return (uint8_t)MAV_RESULT_ACCEPTED;
 }

@@ -16,9 +16,10 @@
 /* Bits needed for x (0 for 0). */
 static int bit_length64(uint64_t x)
 {
+    uint64_t v = x;
     int n = 0;
-    while (x != 0u) {
-        x >>= 1u;
+    while (v != 0u) {
+        v >>= 1u;
         ++n;
     }
     return n;
@@ -38,15 +39,17 @@ uint32_t fw_f32_from_ratio(int64_t num, uint32_t den)
     if (s >= 0) {
         a <<= (unsigned)s; /* < 2^(25 + 31): no overflow */
     } else {
-        const uint64_t lost = a & ((1ull << (unsigned)(-s)) - 1u);
-        sticky = (lost != 0u) ? 1u : 0u;
+        const uint64_t lost = a & ((1ULL << (unsigned)(-s)) - 1U);
+        if (lost != 0U) {
+            sticky = 1U;
+        }
         a >>= (unsigned)(-s);
     }
     uint64_t q = a / den;
     if ((a % den) != 0u) {
         sticky = 1u;
     }
-    if (q >= (1ull << 25u)) {
+    if (q >= 0x2000000ULL) { /* 2^25 */
         sticky |= (uint32_t)(q & 1u);
         q >>= 1u;
         --s;
@@ -56,12 +59,13 @@ uint32_t fw_f32_from_ratio(int64_t num, uint32_t den)
     int exponent = 24 - s; /* value = mant * 2^(exponent - 23) */
     if ((round != 0u) && ((sticky != 0u) || ((mant & 1u) != 0u))) {
         ++mant;
-        if (mant == (1u << 24u)) {
-            mant = 1u << 23u;
+        if (mant == 0x1000000U) { /* 2^24: the carry reached the exponent */
+            mant = 0x800000U;
             ++exponent;
         }
     }
-    const uint32_t biased = (uint32_t)(exponent + 127);
+    const int32_t biased_s = exponent + 127;
+    const uint32_t biased = (uint32_t)biased_s;
     return sign | (biased << 23u) | (mant & 0x7FFFFFu);
 }
 
@@ -69,7 +73,7 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
 {
     const uint32_t exp_field = (f >> 23u) & 0xFFu;
     const uint32_t frac = f & 0x7FFFFFu;
-    if ((exp_field == 0xFFu) || (out == NULL) || (scale < 1) || (scale > (1 << 20))) {
+    if ((exp_field == 0xFFu) || (out == NULL) || (scale < 1) || (scale > 1048576)) {
         return -1; /* NaN or infinity (or a bad call) */
     }
     const uint32_t neg = f >> 31u;
@@ -100,8 +104,8 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
     } else {
         const unsigned sh = (unsigned)(-e);
         mag = p >> sh;
-        const uint64_t rem = p & ((1ull << sh) - 1u);
-        if (rem >= (1ull << (sh - 1u))) {
+        const uint64_t rem = p & ((1ULL << sh) - 1U);
+        if (rem >= (1ULL << (sh - 1U))) {
             ++mag; /* half away from zero */
         }
         if (mag > limit) {
@@ -109,6 +113,7 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
             status = 1;
         }
     }
-    *out = (neg != 0u) ? (int32_t)(0 - (int64_t)mag) : (int32_t)mag;
+    const int64_t value = (int64_t)mag;
+    *out = (int32_t)((neg != 0u) ? -value : value);
     return status;
 }

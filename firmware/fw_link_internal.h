@@ -24,18 +24,25 @@ int fw_link_queue(fw_link_t *l, uint32_t msgid, const void *pkt, uint8_t len, ui
     fw_link_queue((l), MAVLINK_MSG_ID_##NAME, &(pkt), (uint8_t)MAVLINK_MSG_ID_##NAME##_LEN,        \
                   (uint8_t)MAVLINK_MSG_ID_##NAME##_MIN_LEN, (uint8_t)MAVLINK_MSG_ID_##NAME##_CRC)
 
-/* Room for a frame of this payload length (header, CRC). */
-int fw_link_has_room(const fw_link_t *l, uint8_t len);
+/* now is at or after t (both free-running ms; apart by less than 2^31) */
+static inline int fw_link_reached(uint32_t now, uint32_t t)
+{
+    return ((now - t) < 0x80000000U) ? 1 : 0;
+}
 
 /* A binary32 field of a generated (packed) struct, by its offset. */
 static inline void fw_link_put_f32(void *pkt, size_t offset, uint32_t bits)
 {
-    (void)memcpy((uint8_t *)pkt + offset, &bits, sizeof bits);
+    // cppcheck-suppress misra-c2012-11.5 ; D-LINK-BYTES: a generated struct's bytes
+    uint8_t *const bytes = (uint8_t *)pkt;
+    (void)memcpy(&bytes[offset], &bits, sizeof bits);
 }
 static inline uint32_t fw_link_get_f32(const void *pkt, size_t offset)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-LINK-BYTES: a generated struct's bytes
+    const uint8_t *const bytes = (const uint8_t *)pkt;
     uint32_t bits;
-    (void)memcpy(&bits, (const uint8_t *)pkt + offset, sizeof bits);
+    (void)memcpy(&bits, &bytes[offset], sizeof bits);
     return bits;
 }
 

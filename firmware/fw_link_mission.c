@@ -288,7 +288,7 @@ void fw_link_mission_after_step(fw_link_t *l)
     if ((m->apply_pending != 0u) && (l->have_home_alt != 0u)) {
         (void)apply_list(l);
     }
-    if ((m->uploading != 0u) && ((int32_t)(l->now_ms - m->deadline_ms) >= 0)) {
+    if ((m->uploading != 0u) && (fw_link_reached(l->now_ms, m->deadline_ms) != 0)) {
         if (m->retries < l->params.mission_retries) {
             m->retries = (uint8_t)(m->retries + 1u);
             request_item(l);

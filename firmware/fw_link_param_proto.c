@@ -92,13 +92,13 @@ void fw_link_param_rx(fw_link_t *l, const mavlink_message_t *msg)
 void fw_link_param_after_step(fw_link_t *l)
 {
     const uint16_t count = fw_link_param_count();
-    for (unsigned k = 0u; (k < LIST_PER_STEP) && (l->param_list_next < count); ++k) {
-        if ((uint32_t)l->tx_len + LIST_RESERVE > (uint32_t)FW_LINK_TX_BYTES) {
-            break; /* the queue drains first: the list waits, telemetry keeps flowing */
-        }
-        if (fw_link_send_param_value(l, l->param_list_next) != 0) {
-            break;
-        }
+    unsigned k = 0u;
+    /* while the queue has room beyond the reserve; else the list waits for the
+     * queue to drain, and telemetry keeps flowing */
+    while ((k < LIST_PER_STEP) && (l->param_list_next < count) &&
+           (((uint32_t)l->tx_len + LIST_RESERVE) <= (uint32_t)FW_LINK_TX_BYTES) &&
+           (fw_link_send_param_value(l, l->param_list_next) == 0)) {
         l->param_list_next = (uint16_t)(l->param_list_next + 1u);
+        ++k;
     }
 }

@@ -76,11 +76,14 @@ static const row_t rows[] = {
 
 #define ROW_COUNT ((uint16_t)(sizeof rows / sizeof rows[0]))
 
+/* rows per group, unsigned constants */
+#define ROW_PLUS_ONE(id, name, field, unit, fmt, lo, hi, def, desc) +1U
 static const uint16_t group_count[G_COUNT] = {
-    (uint16_t)HT_PARAM_LAW_COUNT, (uint16_t)HT_PARAM_DCM_COUNT,   (uint16_t)HT_PARAM_GUIDE_COUNT,
-    (uint16_t)HT_PARAM_ALT_COUNT, (uint16_t)HT_PARAM_SPEED_COUNT, (uint16_t)HT_PARAM_MODES_COUNT,
-    (uint16_t)HT_PARAM_FBW_COUNT, (uint16_t)HT_PARAM_NAV_COUNT,   (uint16_t)HT_PARAM_AOA_COUNT,
-    (uint16_t)HT_PARAM_LINK_COUNT};
+    0U HT_PARAMS_LAW(ROW_PLUS_ONE),   0U HT_PARAMS_DCM(ROW_PLUS_ONE),
+    0U HT_PARAMS_GUIDE(ROW_PLUS_ONE), 0U HT_PARAMS_ALT(ROW_PLUS_ONE),
+    0U HT_PARAMS_SPEED(ROW_PLUS_ONE), 0U HT_PARAMS_MODES(ROW_PLUS_ONE),
+    0U HT_PARAMS_FBW(ROW_PLUS_ONE),   0U HT_PARAMS_NAV(ROW_PLUS_ONE),
+    0U HT_PARAMS_AOA(ROW_PLUS_ONE),   0U HT_PARAMS_LINK(ROW_PLUS_ONE)};
 
 static const char *const group_prefix[G_COUNT] = {"LAW_", "DCM_", "GDE_", "ALT_", "SPD_",
                                                   "MOD_", "FBW_", "NAV_", "AOA_", "LNK_"};
@@ -88,13 +91,15 @@ static const char *const group_prefix[G_COUNT] = {"LAW_", "DCM_", "GDE_", "ALT_"
 /* The group of a flat index and the row's 1-based id in it. */
 static group_t group_of(uint16_t index, int *id)
 {
-    uint16_t start = 0u;
+    uint32_t start = 0u;
     for (unsigned g = 0u; g < (unsigned)G_COUNT; ++g) {
-        if (index < (uint16_t)(start + group_count[g])) {
-            *id = (int)(index - start) + 1;
+        const uint32_t end = start + group_count[g];
+        if ((uint32_t)index < end) {
+            const uint32_t in_group = (uint32_t)index - start;
+            *id = (int)in_group + 1;
             return (group_t)g;
         }
-        start = (uint16_t)(start + group_count[g]);
+        start = end;
     }
     *id = 0;
     return G_COUNT;
@@ -149,7 +154,7 @@ int fw_link_param_id(uint16_t index, char id[17])
     if (g == G_COUNT) {
         return -1;
     }
-    char body[48];
+    char body[48] = {0};
     size_t n = 0u;
     for (const char *c = rows[index].id; (*c != '\0') && (n < (sizeof body - 1u)); ++c) {
         body[n] = *c;
@@ -194,11 +199,20 @@ int32_t fw_link_param_find(const char *id)
     return -1;
 }
 
-static uint8_t *field_of(const fw_link_t *l, uint16_t index)
+/* the row's field, through its bytes (character pointers: any object) */
+static const uint8_t *field_ro(const fw_link_t *l, uint16_t index)
 {
     int gid = 0;
-    const group_t g = group_of(index, &gid);
-    uint8_t *base = (g == G_LINK) ? (uint8_t *)(uintptr_t)&l->params : (uint8_t *)(uintptr_t)l->cfg;
+    const uint8_t *const base =
+        (group_of(index, &gid) == G_LINK) ? (const uint8_t *)&l->params : (const uint8_t *)l->cfg;
+    return &base[rows[index].offset];
+}
+
+static uint8_t *field_rw(fw_link_t *l, uint16_t index)
+{
+    int gid = 0;
+    uint8_t *const base =
+        (group_of(index, &gid) == G_LINK) ? (uint8_t *)&l->params : (uint8_t *)l->cfg;
     return &base[rows[index].offset];
 }
 
@@ -207,16 +221,22 @@ static int32_t load(const uint8_t *p, uint8_t kind)
     switch ((kind_t)kind) {
     case K_I32: {
         int32_t v;
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field read through its
+        // bytes
         (void)memcpy(&v, p, sizeof v);
         return v;
     }
     case K_I16: {
         int16_t v;
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field read through its
+        // bytes
         (void)memcpy(&v, p, sizeof v);
         return (int32_t)v;
     }
     case K_U16: {
         uint16_t v;
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field read through its
+        // bytes
         (void)memcpy(&v, p, sizeof v);
         return (int32_t)v;
     }
@@ -230,15 +250,21 @@ static void store(uint8_t *p, uint8_t kind, int32_t raw)
 {
     switch ((kind_t)kind) {
     case K_I32:
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field written through its
+        // bytes
         (void)memcpy(p, &raw, sizeof raw);
         break;
     case K_I16: {
         const int16_t v = (int16_t)raw;
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field written through its
+        // bytes
         (void)memcpy(p, &v, sizeof v);
         break;
     }
     case K_U16: {
         const uint16_t v = (uint16_t)raw;
+        // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: the row's field written through its
+        // bytes
         (void)memcpy(p, &v, sizeof v);
         break;
     }
@@ -256,7 +282,7 @@ int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw, const ht
         return -1;
     }
     if (raw != NULL) {
-        *raw = load(field_of(l, index), rows[index].kind);
+        *raw = load(field_ro(l, index), rows[index].kind);
     }
     if (row != NULL) {
         *row = row_info(g, gid);
@@ -323,7 +349,7 @@ int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw)
     if ((info == NULL) || (raw < info->min_raw) || (raw > info->max_raw)) {
         return 1;
     }
-    uint8_t *p = field_of(l, index);
+    uint8_t *p = field_rw(l, index);
     const int32_t old = load(p, rows[index].kind);
     store(p, rows[index].kind, raw);
     if (reinit_group(l, g) != 0) {

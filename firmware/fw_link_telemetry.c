@@ -9,7 +9,7 @@
 
 /* pi / 18000 (rad per centidegree) in units of 2^-30 */
 #define RAD_PER_CDEG_Q30 187406
-#define Q30_DEN          (1u << 30u)
+#define Q30_DEN          0x40000000U /* 2^30 */
 
 static uint32_t f32_cdeg_to_rad(int32_t cdeg)
 {
@@ -23,14 +23,15 @@ static int16_t sat16(int32_t v)
 
 static uint32_t isqrt64(uint64_t x)
 {
+    uint64_t rest = x;
     uint64_t r = 0u;
-    uint64_t bit = 1ull << 62u;
-    while (bit > x) {
+    uint64_t bit = 0x4000000000000000ULL; /* 2^62 */
+    while (bit > rest) {
         bit >>= 2u;
     }
     while (bit != 0u) {
-        if (x >= r + bit) {
-            x -= r + bit;
+        if (rest >= r + bit) {
+            rest -= r + bit;
             r = (r >> 1u) + bit;
         } else {
             r >>= 1u;
@@ -54,10 +55,12 @@ static void heartbeat(fw_link_t *l)
     if (mode == (uint8_t)HT_MODE_MANUAL) {
         base |= (uint8_t)MAV_MODE_FLAG_MANUAL_INPUT_ENABLED;
     } else if (mode == (uint8_t)HT_MODE_FBW) {
-        base |= (uint8_t)(MAV_MODE_FLAG_MANUAL_INPUT_ENABLED | MAV_MODE_FLAG_STABILIZE_ENABLED);
+        base |= (uint8_t)MAV_MODE_FLAG_MANUAL_INPUT_ENABLED;
+        base |= (uint8_t)MAV_MODE_FLAG_STABILIZE_ENABLED;
     } else {
-        base |= (uint8_t)(MAV_MODE_FLAG_STABILIZE_ENABLED | MAV_MODE_FLAG_GUIDED_ENABLED |
-                          MAV_MODE_FLAG_AUTO_ENABLED);
+        base |= (uint8_t)MAV_MODE_FLAG_STABILIZE_ENABLED;
+        base |= (uint8_t)MAV_MODE_FLAG_GUIDED_ENABLED;
+        base |= (uint8_t)MAV_MODE_FLAG_AUTO_ENABLED;
     }
     if ((l->have_output != 0u) && (o->pulse_count > 0u)) {
         base |= (uint8_t)MAV_MODE_FLAG_SAFETY_ARMED; /* the servos and the motor are driven */
@@ -82,16 +85,20 @@ static void sys_status(fw_link_t *l)
     const fw_output_t *o = &l->last;
     mavlink_sys_status_t ss;
     (void)memset(&ss, 0, sizeof ss);
-    const uint32_t present =
-        (uint32_t)(MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL |
-                   MAV_SYS_STATUS_SENSOR_GPS | MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE |
-                   MAV_SYS_STATUS_SENSOR_ABSOLUTE_PRESSURE | MAV_SYS_STATUS_SENSOR_RC_RECEIVER |
-                   MAV_SYS_STATUS_SENSOR_ANGULAR_RATE_CONTROL |
-                   MAV_SYS_STATUS_SENSOR_ATTITUDE_STABILIZATION |
-                   MAV_SYS_STATUS_SENSOR_XY_POSITION_CONTROL | MAV_SYS_STATUS_SENSOR_MOTOR_OUTPUTS);
+    const uint32_t present = (uint32_t)MAV_SYS_STATUS_SENSOR_3D_GYRO |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_3D_ACCEL |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_GPS |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_ABSOLUTE_PRESSURE |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_RC_RECEIVER |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_ANGULAR_RATE_CONTROL |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_ATTITUDE_STABILIZATION |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_XY_POSITION_CONTROL |
+                             (uint32_t)MAV_SYS_STATUS_SENSOR_MOTOR_OUTPUTS;
     uint32_t health = present;
     if (o->failsafe != 0u) {
-        health &= ~(uint32_t)(MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL);
+        health &=
+            ~((uint32_t)MAV_SYS_STATUS_SENSOR_3D_GYRO | (uint32_t)MAV_SYS_STATUS_SENSOR_3D_ACCEL);
     }
     if (o->modes.failsafe != 0u) {
         health &= ~(uint32_t)MAV_SYS_STATUS_SENSOR_RC_RECEIVER;
@@ -189,16 +196,19 @@ static void vfr_hud(fw_link_t *l)
     const fw_nav_t *n = &l->last.nav;
     mavlink_vfr_hud_t v;
     (void)memset(&v, 0, sizeof v);
-    const int64_t vn = n->vel_north_cm_s;
-    const int64_t ve = n->vel_east_cm_s;
-    const uint32_t ground_cm_s = isqrt64((uint64_t)(vn * vn + ve * ve));
+    const int32_t vn = n->vel_north_cm_s;
+    const int32_t ve = n->vel_east_cm_s;
+    const uint64_t an = (vn < 0) ? (0U - (uint64_t)vn) : (uint64_t)vn; /* < 2^31 */
+    const uint64_t ae = (ve < 0) ? (0U - (uint64_t)ve) : (uint64_t)ve;
+    const uint32_t ground_cm_s = isqrt64((an * an) + (ae * ae));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, airspeed),
                     fw_f32_from_ratio(n->airspeed_cm_s, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, groundspeed),
                     fw_f32_from_ratio((int64_t)ground_cm_s, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, alt), fw_f32_from_ratio(n->altitude_cm, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, climb), fw_f32_from_ratio(n->climb_cm_s, 100u));
-    v.heading = (int16_t)(l->last.est.yaw_cdeg / 100u);
+    const uint16_t heading_deg = (uint16_t)(l->last.est.yaw_cdeg / 100u); /* [0, 359] */
+    v.heading = (int16_t)heading_deg;
     const int32_t thr = (int32_t)l->last.throttle;
     v.throttle = (uint16_t)(((thr < 0) ? 0 : ((thr * 100) + 8192) / 16384));
     (void)FW_LINK_QUEUE(l, VFR_HUD, v);
@@ -399,10 +409,10 @@ void fw_link_telemetry_after_step(fw_link_t *l)
         if (iv == 0u) {
             continue;
         }
-        if ((int32_t)(l->now_ms - l->next_ms[i]) >= 0) {
+        if (fw_link_reached(l->now_ms, l->next_ms[i]) != 0) {
             fw_link_send_stream(l, s);
             l->next_ms[i] += iv;
-            if ((int32_t)(l->now_ms - l->next_ms[i]) >= 0) {
+            if (fw_link_reached(l->now_ms, l->next_ms[i]) != 0) {
                 l->next_ms[i] = l->now_ms + iv; /* fell behind (or the first): restart */
             }
         }
