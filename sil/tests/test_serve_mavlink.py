@@ -280,6 +280,7 @@ def test_malformed_frames_are_dropped_and_counted(board_lib: str, tmp_path: Path
         g.finish()
     c = g.stats()["board_link"]
     g.note(f"malformed frames: {c}")
+    print(f"\nboard link after the malformed frames: {c}, PARAM_VALUE answers {answers}")
     assert answers == c["rx_ok"] and answers in (2, 3), (answers, c)  # one good frame eaten
     assert c["rx_bad_crc"] >= 2  # the broken CRC, the cut frame (with the next one's start)
     assert c["rx_unknown_id"] == 1 and c["rx_wrong_target"] == 1, c
