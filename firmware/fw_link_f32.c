@@ -87,11 +87,11 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
         e = (int)exp_field - 150;
     }
     const uint64_t p = m * (uint64_t)(uint32_t)scale; /* < 2^44 */
-    const uint64_t limit = (neg != 0u) ? 0x80000000ull : 0x7FFFFFFFull;
-    uint64_t mag;
+    const uint64_t limit = (neg != 0u) ? 0x80000000ULL : 0x7FFFFFFFULL;
+    uint64_t mag = 0u; /* p == 0: zero */
     int status = 0;
-    if (p == 0u) {
-        mag = 0u;
+    if ((p == 0u) || (e < -62)) {
+        /* +-0, or below 2^44 * 2^-63: less than half a step: zero */
     } else if (e >= 0) {
         if ((e >= 32) || (p > (limit >> (unsigned)e))) { /* p * 2^e > limit */
             mag = limit;
@@ -99,8 +99,6 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
         } else {
             mag = p << (unsigned)e;
         }
-    } else if (e < -62) {
-        mag = 0u; /* below 2^44 * 2^-63: less than half a step */
     } else {
         const unsigned sh = (unsigned)(-e);
         mag = p >> sh;

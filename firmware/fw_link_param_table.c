@@ -77,7 +77,8 @@ static const row_t rows[] = {
 #define ROW_COUNT ((uint16_t)(sizeof rows / sizeof rows[0]))
 
 /* rows per group, unsigned constants */
-#define ROW_PLUS_ONE(id, name, field, unit, fmt, lo, hi, def, desc) +1U
+#define ROW_PLUS_ONE(id, name, field, unit, fmt, lo, hi, def, desc)                                \
+    +1U /* NOLINT(bugprone-macro-parentheses): a sum's term */
 static const uint16_t group_count[G_COUNT] = {
     0U HT_PARAMS_LAW(ROW_PLUS_ONE),   0U HT_PARAMS_DCM(ROW_PLUS_ONE),
     0U HT_PARAMS_GUIDE(ROW_PLUS_ONE), 0U HT_PARAMS_ALT(ROW_PLUS_ONE),

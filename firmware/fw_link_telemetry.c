@@ -18,7 +18,15 @@ static uint32_t f32_cdeg_to_rad(int32_t cdeg)
 
 static int16_t sat16(int32_t v)
 {
-    return (v > INT16_MAX) ? INT16_MAX : ((v < INT16_MIN) ? INT16_MIN : (int16_t)v);
+    int16_t r;
+    if (v > INT16_MAX) {
+        r = INT16_MAX;
+    } else if (v < INT16_MIN) {
+        r = INT16_MIN;
+    } else {
+        r = (int16_t)v;
+    }
+    return r;
 }
 
 static uint32_t isqrt64(uint64_t x)
