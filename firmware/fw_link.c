@@ -30,7 +30,8 @@ int fw_link_init(fw_link_t *l, fw_t *fw, fw_config_t *cfg_live, uint8_t sysid, u
 /* Room for a frame of this payload length (header, CRC). */
 static int fw_link_has_room(const fw_link_t *l, uint8_t len)
 {
-    const uint32_t need = (uint32_t)MAVLINK_NUM_NON_PAYLOAD_BYTES + (uint32_t)len;
+    const uint32_t overhead = MAVLINK_NUM_NON_PAYLOAD_BYTES; /* header and CRC */
+    const uint32_t need = overhead + (uint32_t)len;
     return ((uint32_t)l->tx_len + need <= (uint32_t)FW_LINK_TX_BYTES) ? 1 : 0;
 }
 
@@ -76,13 +77,13 @@ static void drop(fw_link_t *l, uint32_t *why)
 static int for_us(const fw_link_t *l, const mavlink_message_t *msg, const mavlink_msg_entry_t *e)
 {
     const uint8_t *payload = (const uint8_t *)_MAV_PAYLOAD(msg);
-    if ((e->flags & MAV_MSG_ENTRY_FLAG_HAVE_TARGET_SYSTEM) != 0u) {
+    if ((e->flags & (uint8_t)MAV_MSG_ENTRY_FLAG_HAVE_TARGET_SYSTEM) != 0u) {
         const uint8_t ts = payload[e->target_system_ofs];
         if ((ts != 0u) && (ts != l->params.sysid)) {
             return 0;
         }
     }
-    if ((e->flags & MAV_MSG_ENTRY_FLAG_HAVE_TARGET_COMPONENT) != 0u) {
+    if ((e->flags & (uint8_t)MAV_MSG_ENTRY_FLAG_HAVE_TARGET_COMPONENT) != 0u) {
         const uint8_t tc = payload[e->target_component_ofs];
         if ((tc != 0u) && (tc != l->compid)) {
             return 0;
@@ -98,7 +99,7 @@ static void frame_ok(fw_link_t *l, const mavlink_message_t *msg)
         drop(l, &l->count.rx_unknown_id); /* cannot happen: the CRC needs the entry */
         return;
     }
-    if ((msg->incompat_flags & MAVLINK_IFLAG_SIGNED) != 0u) {
+    if ((msg->incompat_flags & (uint8_t)MAVLINK_IFLAG_SIGNED) != 0u) {
         drop(l, &l->count.rx_garbled); /* signing is not supported: docs/mavlink.md */
         return;
     }

@@ -58,9 +58,9 @@ static void autopilot_version(fw_link_t *l)
 {
     mavlink_autopilot_version_t v;
     (void)memset(&v, 0, sizeof v);
-    v.capabilities =
-        (uint64_t)(MAV_PROTOCOL_CAPABILITY_MISSION_INT | MAV_PROTOCOL_CAPABILITY_PARAM_FLOAT |
-                   MAV_PROTOCOL_CAPABILITY_MAVLINK2);
+    v.capabilities = (uint64_t)MAV_PROTOCOL_CAPABILITY_MISSION_INT |
+                     (uint64_t)MAV_PROTOCOL_CAPABILITY_PARAM_FLOAT |
+                     (uint64_t)MAV_PROTOCOL_CAPABILITY_MAVLINK2;
     (void)FW_LINK_QUEUE(l, AUTOPILOT_VERSION, v);
 }
 

@@ -35,6 +35,7 @@ static inline void fw_link_put_f32(void *pkt, size_t offset, uint32_t bits)
 {
     // cppcheck-suppress misra-c2012-11.5 ; D-LINK-BYTES: a generated struct's bytes
     uint8_t *const bytes = (uint8_t *)pkt;
+    // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: a binary32 field's bytes
     (void)memcpy(&bytes[offset], &bits, sizeof bits);
 }
 static inline uint32_t fw_link_get_f32(const void *pkt, size_t offset)
@@ -42,6 +43,7 @@ static inline uint32_t fw_link_get_f32(const void *pkt, size_t offset)
     // cppcheck-suppress misra-c2012-11.5 ; D-LINK-BYTES: a generated struct's bytes
     const uint8_t *const bytes = (const uint8_t *)pkt;
     uint32_t bits;
+    // cppcheck-suppress misra-c2012-21.15 ; D-LINK-BYTES: a binary32 field's bytes
     (void)memcpy(&bits, &bytes[offset], sizeof bits);
     return bits;
 }
