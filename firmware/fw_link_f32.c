@@ -103,7 +103,8 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
         const unsigned sh = (unsigned)(-e);
         mag = p >> sh;
         const uint64_t rem = p & ((1ULL << sh) - 1U);
-        const uint64_t half = 1ULL << (sh - 1U);
+        const unsigned half_sh = sh - 1U;
+        const uint64_t half = 1ULL << half_sh;
         if (rem >= half) {
             ++mag; /* half away from zero */
         }

@@ -55,11 +55,8 @@ static void param_set(fw_link_t *l, const mavlink_message_t *msg)
     (void)fw_link_param_get(l, (uint16_t)index, NULL, &row);
     const uint32_t bits = fw_link_get_f32(&ps, offsetof(mavlink_param_set_t, param_value));
     /* refused: NaN or infinity, or out of the row's range, or a joint check */
-    const int refused = ((row == NULL) || (fw_f32_to_fixed(bits, row->scale, &raw) < 0) ||
-                         (fw_link_param_set(l, (uint16_t)index, raw) != 0))
-                            ? 1
-                            : 0;
-    if (refused != 0) {
+    if ((row == NULL) || (fw_f32_to_fixed(bits, row->scale, &raw) < 0) ||
+        (fw_link_param_set(l, (uint16_t)index, raw) != 0)) {
         fw_link_count(&l->count.rx_bad_content);
     }
     (void)fw_link_send_param_value(l, (uint16_t)index); /* the value in force */
