@@ -298,6 +298,38 @@ static void test_param_ids_unique_and_short(void)
     TEST_ASSERT_EQUAL_INT32(-1, fw_link_param_find("LAW_NO_SUCH"));
 }
 
+/* the link's own rows (params.def HT_PARAMS_LINK): defaults, names, and
+ * every bound edge through the parameter protocol's setter */
+static void test_link_rows_defaults_and_edges(void)
+{
+    fw_link_params_t d;
+    ht_link_params_default(&d);
+    TEST_ASSERT_EQUAL_INT(HT_LINK_P_NONE, ht_link_first_bad(&d));
+    TEST_ASSERT_EQUAL_UINT8(1u, d.sysid);
+    TEST_ASSERT_EQUAL_UINT8(10u, d.attitude_hz);
+    TEST_ASSERT_EQUAL_UINT16(1500u, d.mission_timeout_ms);
+    TEST_ASSERT_EQUAL_STRING("attitude_hz", ht_link_param_name(HT_LINK_P_ATTITUDE_HZ));
+    TEST_ASSERT_NULL(ht_link_param_info(HT_LINK_P_COUNT));
+    const uint16_t first = (uint16_t)(fw_link_param_count() - HT_PARAM_LINK_COUNT);
+    for (int id = 1; id < (int)HT_LINK_P_COUNT; ++id) {
+        const ht_param_info_t *row = ht_link_param_info((ht_link_param_id_t)id);
+        TEST_ASSERT_NOT_NULL(row);
+        const uint16_t index = (uint16_t)(first + (uint16_t)(id - 1));
+        int32_t raw = 0;
+        const ht_param_info_t *same = NULL;
+        TEST_ASSERT_EQUAL_INT(0, fw_link_param_get(&lk, index, &raw, &same));
+        TEST_ASSERT_EQUAL_PTR(row, same);
+        TEST_ASSERT_EQUAL_INT32(row->default_raw, raw);
+        TEST_ASSERT_NOT_EQUAL(0, fw_link_param_set(&lk, index, row->min_raw - 1));
+        TEST_ASSERT_NOT_EQUAL(0, fw_link_param_set(&lk, index, row->max_raw + 1));
+        TEST_ASSERT_EQUAL_INT(0, fw_link_param_set(&lk, index, row->max_raw));
+        TEST_ASSERT_EQUAL_INT(0, fw_link_param_set(&lk, index, row->min_raw));
+        TEST_ASSERT_EQUAL_INT(0, fw_link_param_get(&lk, index, &raw, NULL));
+        TEST_ASSERT_EQUAL_INT32(row->min_raw, raw);
+        TEST_ASSERT_EQUAL_INT(HT_LINK_P_NONE, ht_link_first_bad(&lk.params));
+    }
+}
+
 static void test_param_list_and_read(void)
 {
     steps(2u);
@@ -874,6 +906,7 @@ int main(void)
     RUN_TEST(test_telemetry_rates_over_one_second);
     RUN_TEST(test_telemetry_content);
     RUN_TEST(test_param_ids_unique_and_short);
+    RUN_TEST(test_link_rows_defaults_and_edges);
     RUN_TEST(test_param_list_and_read);
     RUN_TEST(test_param_set_applies_without_resetting_the_flight);
     RUN_TEST(test_param_set_refusals_answer_the_old_value);
