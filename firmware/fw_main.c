@@ -43,6 +43,22 @@ __attribute__((weak)) void fw_board_config(fw_config_t *cfg)
     (void)cfg;
 }
 
+/* The defaults: no ground-station link (a board with a telemetry UART
+ * overrides them, fw_board_config.h). */
+__attribute__((weak)) int fw_board_link_init(fw_link_t *link)
+{
+    (void)link;
+    return 0;
+}
+__attribute__((weak)) void fw_board_link_poll(fw_link_t *link)
+{
+    (void)link;
+}
+__attribute__((weak)) uint32_t fw_board_time_ms(void)
+{
+    return 0u;
+}
+
 // cppcheck-suppress misra-c2012-8.6 ; FP: one main per image, hil_main.c is another program
 int main(void)
 {
@@ -51,6 +67,7 @@ int main(void)
     static fw_t fw;
     static fw_inputs_t in;
     static fw_output_t out;
+    static fw_link_t link;
     fw_config_default(&config);
     fw_board_config(&config);
     board_config_t board = BOARD_CONFIG_DEFAULT;
@@ -62,6 +79,11 @@ int main(void)
         }
     }
     (void)fw_init(&fw, &config); /* a refused config: no pulses, reported below */
+    const uint8_t link_on =
+        ((fw_link_init(&link, &fw, &config, 0u, (uint8_t)MAV_COMP_ID_AUTOPILOT1) == 0) &&
+         (fw_board_link_init(&link) != 0))
+            ? 1u
+            : 0u;
     uint8_t reported = (uint8_t)BOARD_FS_NONE;
     const uint8_t rc_n = board_rc_count();
     in.rc_count = (rc_n > FW_RC_MAX) ? (uint8_t)FW_RC_MAX : rc_n;
@@ -75,12 +97,18 @@ int main(void)
         if (board_rc_read_us(in.rc_us, in.rc_count) == BOARD_OK) {
             in.rc_fresh = 1u;
         }
+        if (link_on != 0u) {
+            fw_board_link_poll(&link); /* the ground station's bytes in, ours out */
+        }
         if (fw_step(&fw, &in, &out) != 0) {
             in.rc_fresh = 0u;
             if (out.pulse_count > 0u) {
                 write_pulses(&out);
             }
             report_failsafe(&reported, failsafe_reason(&fw, &out));
+            if (link_on != 0u) {
+                fw_link_after_step(&link, &out, fw_board_time_ms());
+            }
         } else if (fw.ready == 0u) {
             report_failsafe(&reported, BOARD_FS_CONFIG);
         } else {

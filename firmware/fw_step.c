@@ -371,6 +371,36 @@ static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_outpu
     o->pitch_cmd = pitch;
 }
 
+/* A ground station's mode in place of the mode switch (fw_t.gcs_mode): the
+ * pulse that selects it, given only where the switch's own pulse is valid
+ * (a lost or bad frame stays bad: the failsafe still wins). The pilot takes
+ * the mode back by moving the switch. */
+static void gcs_mode_pulse(fw_t *fw, ht_modes_input_t *mi)
+{
+    const uint8_t input = fw->modes.mode_input;
+    if ((fw->gcs_mode == 0u) || (fw->gcs_mode > (uint8_t)HT_MODE_COUNT) ||
+        (input >= mi->rc_count) || (input >= HT_MODES_RC_MAX)) {
+        return;
+    }
+    const uint16_t us = mi->rc_us[input];
+    if ((us < OS_RC_VALID_MIN_US) || (us > OS_RC_VALID_MAX_US)) {
+        return;
+    }
+    const uint8_t sw = (uint8_t)ht_modes_from_pulse(&fw->modes, us);
+    if (fw->gcs_switch == UINT8_MAX) {
+        fw->gcs_switch = sw;
+    } else if (sw != fw->gcs_switch) {
+        fw->gcs_mode = 0u; /* the pilot moved the switch */
+        return;
+    } else {
+        /* the switch is where it was */
+    }
+    const uint16_t *thr = fw->modes.mode_threshold_us;
+    const uint8_t mode = (uint8_t)(fw->gcs_mode - 1u);
+    mi->rc_us[input] =
+        (mode == (uint8_t)HT_MODE_MANUAL) ? (uint16_t)OS_RC_VALID_MIN_US : thr[mode - 1u];
+}
+
 /* The pilot: RC -> flight modes (targets, holds, AoA model) -> upset guard
  * -> law -> the modes' surface blend. */
 static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_output_t *o,
@@ -400,6 +430,7 @@ static void pilot(fw_t *fw, const fw_inputs_t *in, const fw_nav_t *nav, fw_outpu
     mi.vel_east_cm_s = nav->vel_east_cm_s;
     mi.heading_north = nav->heading_north;
     mi.heading_east = nav->heading_east;
+    gcs_mode_pulse(fw, &mi);
     ht_modes_step(&fw->modes, &fw->modes_state, &mi, &o->modes);
     ht_input_t *li = &o->modes.law_in;
     option_inputs(fw, fw->modes_state.turn_cmd_rad_s, li);

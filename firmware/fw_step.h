@@ -180,6 +180,13 @@ typedef struct {
     int32_t bad_sub; /* the block's own field id */
     ht_modes_bad_t modes_bad;
     uint32_t samples, control_steps;
+    /* A ground station's mode (fw_link.h): 0 none, else 1 + ht_mode_t. The
+     * step gives the modes the pulse that selects it in place of the mode
+     * switch's, so the RC-loss failsafe still wins; moving the switch
+     * (away from gcs_switch, its mode when the command came; UINT8_MAX: not
+     * read yet) gives the mode back to the pilot and clears gcs_mode. */
+    uint8_t gcs_mode;
+    uint8_t gcs_switch;
 } fw_t;
 
 /* Check the whole configuration and initialise. 1 = ready; 0 = refused

@@ -176,8 +176,8 @@ static void clocks_enable(void)
     // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: RCC register block address
     stm32_rcc_t *const rcc = (stm32_rcc_t *)STM32_RCC_BASE;
     rcc->AHB1ENR |= 0x7u; /* GPIOA, GPIOB, GPIOC */
-    /* TIM3 1, TIM4 2, TIM5 3, TIM12 6, USART2 17, USART3 18, I2C1 21, I2C2 22 */
-    rcc->APB1ENR |= 0x0066004Eu;
+    /* TIM3 1, TIM4 2, TIM5 3, TIM12 6, USART2 17, USART3 18, UART4 19, I2C1 21, I2C2 22 */
+    rcc->APB1ENR |= 0x006E004Eu;
     /* TIM8 1, USART1 4, USART6 5, SPI1 12, SYSCFG 14 */
     rcc->APB2ENR |= 0x5032u;
     (void)rcc->APB2ENR; /* the enables take effect before the first access */

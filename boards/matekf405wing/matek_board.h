@@ -7,6 +7,7 @@
  * matek_rc.c             receiver: SBUS (USART2), CRSF (USART6) or PPM (TIM5)
  * matek_txq.c            non-blocking UART transmit queues, the console (USART1)
  * matek_params_boot.c    the parameter store, loaded before board_init
+ * matek_mavlink.c        the MAVLink ground-station link (UART4)
  */
 #ifndef HT_MATEK_BOARD_H
 #define HT_MATEK_BOARD_H
@@ -14,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fw_link.h"
 #include "matek_param_blob.h"
 #include "stm32f4_clock.h"
 #include "stm32f4_gpio.h"
@@ -84,5 +86,8 @@ void matek_rc_poll(void);
 
 /* --- matek_params_boot.c -------------------------------------------------- */
 const matek_params_report_t *matek_params_report(void);
+/* fw_link_save_fn: the law's and the estimator's parameters into the store
+ * (a flash sector erase: the loop stalls). 0 = saved. */
+int matek_params_save(void *ctx, const fw_config_t *cfg, const fw_link_params_t *link);
 
 #endif /* HT_MATEK_BOARD_H */

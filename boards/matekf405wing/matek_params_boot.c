@@ -17,6 +17,7 @@
 
 static stm32_flash_t flash;
 static param_flash_t pflash;
+static uint8_t flash_ok;
 static matek_params_report_t report = {(uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0};
 
 void fw_board_config(fw_config_t *cfg)
@@ -29,7 +30,24 @@ void fw_board_config(fw_config_t *cfg)
         return;
     }
     stm32_param_flash_bind(&flash, &pflash);
+    flash_ok = 1u;
     matek_params_load(&pflash, cfg, &report);
+}
+
+int matek_params_save(void *ctx, const fw_config_t *cfg, const fw_link_params_t *link)
+{
+    static uint8_t blob[MATEK_PARAM_BLOB_BYTES];
+    (void)ctx;
+    (void)link; /* the link's rows are not in the blob (schema 1): their defaults fly */
+    if ((flash_ok == 0u) || (cfg == NULL)) {
+        return -1;
+    }
+    matek_param_blob_encode(&cfg->law, &cfg->dcm, blob);
+    param_store_t store;
+    matek_param_store(&pflash, &store);
+    uint8_t slot = 0u;
+    uint32_t sequence = 0u;
+    return (param_store_save(&store, blob, &slot, &sequence) == PARAM_STORE_OK) ? 0 : -1;
 }
 
 const matek_params_report_t *matek_params_report(void)

@@ -53,7 +53,8 @@
  *   USART2 PA3 RX (the "SBUS" pad: RX2 through the board's inverter) AF7: SBUS
  *          (PA2 TX2: unused here)
  *   USART3 PC10 TX / PC11 RX AF7: GPS (u-blox)
- *   UART4  PA0 / PA1, UART5 PC12 / PD2: free
+ *   UART4  PA0 TX4 / PA1 RX4 AF8: the MAVLink ground-station link (matek_mavlink.c)
+ *   UART5  PC12 / PD2: free
  *   USART6 PC6 TX / PC7 RX   AF8: CRSF receiver (uninverted)
  * PPM: PA3 (the same RX2 pad) as TIM5_CH4, AF2 [DS; INAV uses TIM9_CH2, AP
  * once TIM2_CH4: any of the three fits the pin]. */
@@ -66,6 +67,9 @@
 #define MATEK_USART6_RX_PIN 7u
 #define MATEK_AF_USART1_3   7u
 #define MATEK_AF_USART6     8u
+#define MATEK_UART4_TX_PIN  0u /* PA0 */
+#define MATEK_UART4_RX_PIN  1u /* PA1 */
+#define MATEK_AF_UART4      8u
 #define MATEK_PPM_PIN       3u /* PA3 */
 #define MATEK_PPM_CHANNEL   4u /* TIM5_CH4 */
 #define MATEK_AF_TIM5       2u

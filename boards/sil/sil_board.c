@@ -413,6 +413,16 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     if (fw_init(&b->fw, fc) == 0) {
         return fw_refused(&b->fw, err, err_len);
     }
+    if (cfg->link_sysid < 0 || cfg->link_sysid > 255) {
+        return fail(err, err_len, "link_sysid");
+    }
+    if (cfg->link_compid < 0 || cfg->link_compid > 255) {
+        return fail(err, err_len, "link_compid");
+    }
+    const uint8_t compid = (cfg->link_compid == 0) ? 1u : (uint8_t)cfg->link_compid;
+    if (fw_link_init(&b->link, &b->fw, fc, (uint8_t)cfg->link_sysid, compid) != 0) {
+        return fail(err, err_len, "link");
+    }
     b->modes_enabled = (cfg->modes_enabled != 0) ? 1u : 0u;
     b->ready = 1;
     if (err != NULL && err_len > 0u) {
@@ -593,5 +603,73 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
     }
     if (ran) {
         actuators(b, a);
+        /* the board's clock: the control steps run so far, in ms (wraps
+         * after 49 days, as a board's millisecond tick does) */
+        const uint64_t ms =
+            ((uint64_t)b->fw.control_steps * 1000u) / (uint64_t)b->cfg.modes.rate_hz;
+        fw_link_after_step(&b->link, &b->out, (uint32_t)(ms & UINT32_MAX));
+    }
+}
+
+/* --- the ground-station link (ABI 15) ------------------------------------- */
+
+void sil_link_rx(sil_board_t *b, const uint8_t *bytes, size_t n)
+{
+    if (b != NULL && b->ready && bytes != NULL) {
+        fw_link_rx(&b->link, bytes, n);
+    }
+}
+
+size_t sil_link_tx(sil_board_t *b, uint8_t *buf, size_t cap)
+{
+    if (b == NULL || !b->ready || buf == NULL) {
+        return 0u;
+    }
+    return fw_link_tx(&b->link, buf, cap);
+}
+
+/* fw_link_counters_t's fields, by name, in its order */
+#define SIL_COUNTER_COUNT 9
+
+int sil_link_counter_count(void)
+{
+    return SIL_COUNTER_COUNT;
+}
+
+const char *sil_link_counter_name(int index)
+{
+    static const char *const names[SIL_COUNTER_COUNT] = {
+        "rx_ok",           "rx_dropped",     "rx_bad_crc", "rx_garbled", "rx_unknown_id",
+        "rx_wrong_target", "rx_bad_content", "tx_frames",  "tx_overflow"};
+    return (index >= 0 && index < SIL_COUNTER_COUNT) ? names[index] : NULL;
+}
+
+uint32_t sil_link_counter(const sil_board_t *b, int index)
+{
+    if (b == NULL || !b->ready) {
+        return 0u;
+    }
+    const fw_link_counters_t *c = &b->link.count;
+    switch (index) {
+    case 0:
+        return c->rx_ok;
+    case 1:
+        return c->rx_dropped;
+    case 2:
+        return c->rx_bad_crc;
+    case 3:
+        return c->rx_garbled;
+    case 4:
+        return c->rx_unknown_id;
+    case 5:
+        return c->rx_wrong_target;
+    case 6:
+        return c->rx_bad_content;
+    case 7:
+        return c->tx_frames;
+    case 8:
+        return c->tx_overflow;
+    default:
+        return 0u;
     }
 }

@@ -24,6 +24,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fw_link.h"
 #include "fw_step.h"
 
 #ifdef __cplusplus
@@ -31,11 +32,12 @@ extern "C" {
 #endif
 
 #define SIL_BOARD_ABI_VERSION                                                                      \
-    14 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
+    15 /* 8: raw sensors, the one firmware step; 9: align_to_truth;                                \
           10: dcm_gps_latency_s; 11: law[] and estimator[] from the parameter table;               \
           12: guidance[] (the turn-rate trim);                                                     \
           13: alt_hold[] and speed_hold[] from the parameter table;                                \
-          14: modes[], fbw[], nav[], aoa[] from the parameter table */
+          14: modes[], fbw[], nav[], aoa[] from the parameter table;                               \
+          15: the MAVLink ground-station link (sil_link_*) */
 
 /* Flight modes (ABI 6): RC pulses the scripted pilot sends, waypoints the
  * configuration can carry. */
@@ -84,6 +86,9 @@ typedef struct {
      * as altitude_m); rounded to whole metres */
     int32_t waypoint_count;
     double waypoints[SIL_MAX_WAYPOINTS][3];
+    /* ABI 15: the ground-station link's MAVLink ids, [0, 255]; 0 takes the
+     * default (system: the table's LNK_SYSID row; component 1, the autopilot) */
+    int32_t link_sysid, link_compid;
 } sil_config_t;
 
 /* One control step's measurements (library axes: X left, Y forward, Z down).
@@ -184,6 +189,7 @@ typedef struct {
     fw_t fw;
     ht_waypoint_t waypoints[SIL_MAX_WAYPOINTS]; /* read by the modes (must not move) */
     fw_output_t out;                            /* the last control step */
+    fw_link_t link; /* ABI 15: the ground-station link (MAVLink 2), on fw and cfg */
     uint8_t modes_enabled;
     uint8_t ready;
 } sil_board_t;
@@ -227,6 +233,22 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
  * control chain on the last one), doubles out. */
 void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t *c,
                     sil_actuators_t *a);
+
+/* --- ABI 15: the ground-station link (firmware/fw_link.h) -----------------
+ * The host moves bytes only, as a UART driver would: the firmware's link
+ * parses them and builds every frame. sil_board_step calls
+ * fw_link_after_step after each control step, with the board's clock (the
+ * control steps run, at control_rate_hz, in ms). */
+
+/* Bytes from the ground station (any split). Nothing before init. */
+void sil_link_rx(sil_board_t *b, const uint8_t *bytes, size_t n);
+/* Up to cap bytes to send; returns how many were written to buf. */
+size_t sil_link_tx(sil_board_t *b, uint8_t *buf, size_t cap);
+/* The link's counters (fw_link_counters_t) by index: how many, each one's
+ * name (NULL out of range) and value (0 out of range or before init). */
+int sil_link_counter_count(void);
+const char *sil_link_counter_name(int index);
+uint32_t sil_link_counter(const sil_board_t *b, int index);
 
 #ifdef __cplusplus
 }

@@ -34,6 +34,7 @@ void USART2_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void USART3_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void TIM5_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void USART6_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void UART4_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 
 /* 16 system exceptions (the first is the initial stack pointer) and the 82
  * STM32F405 interrupt lines (RM0090 table 61: positions 0..81). A struct
@@ -106,7 +107,10 @@ __attribute__((section(".isr_vector"), used)) const vector_table_t vector_table 
         Default_Handler,   /* 49 */
         TIM5_IRQHandler,   /* 50 */
         Default_Handler,   /* 51 */
-        DEFAULT_X4,        /* 52..55 */
+        UART4_IRQHandler,  /* 52 */
+        Default_Handler,   /* 53 */
+        Default_Handler,   /* 54 */
+        Default_Handler,   /* 55 */
         DEFAULT_X4,        /* 56..59 */
         DEFAULT_X4,        /* 60..63 */
         DEFAULT_X4,        /* 64..67 */

@@ -51,6 +51,7 @@ _Static_assert((size_t)offsetof(stm32_usart_regs_t, GTPR) == 0x18u, "USART GTPR 
 #define USART_CR1_RE     (1u << 2)            /* receiver enable */
 #define USART_CR1_TE     (1u << 3)            /* transmitter enable */
 #define USART_CR1_RXNEIE (1u << 5)            /* interrupt while RXNE or ORE is set */
+#define USART_CR1_TXEIE  (1u << 7)            /* interrupt while TXE is set */
 #define USART_CR1_PS     (1u << 9)            /* parity selection: 0 even, 1 odd */
 #define USART_CR1_PCE    0x0400u              /* bit 10, parity control: the word's MSB is parity */
 #define USART_CR1_M      0x1000u              /* bit 12, word length: 0 = 8 bits, 1 = 9 bits */
@@ -68,7 +69,7 @@ _Static_assert((size_t)offsetof(stm32_usart_regs_t, GTPR) == 0x18u, "USART GTPR 
 #define STM32_USART1_IRQN    37u
 #define STM32_USART2_IRQN    38u
 #define STM32_USART3_IRQN    39u
-#define STM32_UART4_IRQN     52u
+#define STM32_UART4_IRQN     52u /* the Matek's MAVLink link (boards/matekf405wing) */
 #define STM32_UART5_IRQN     53u
 #define STM32_USART6_IRQN    71u
 #define STM32_NVIC_ISER_BASE 0xE000E100u

@@ -14,10 +14,11 @@ from typing import Any
 
 from helical_sil import params as ptable
 
-ABI_VERSION = 14
+ABI_VERSION = 15
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
 RC_COUNT = 8  # SIL_RC_COUNT
 MAX_WAYPOINTS = 64  # SIL_MAX_WAYPOINTS
+LINK_TX_MAX = 8192  # bytes the link is asked for at once (Board.link_tx)
 
 _D = ctypes.c_double
 _I = ctypes.c_int32
@@ -46,6 +47,8 @@ class SilConfig(ctypes.Structure):
         ("aoa", _D * len(ptable.AOA)),
         ("waypoint_count", _I),
         ("waypoints", (_D * 3) * MAX_WAYPOINTS),
+        # ABI 15: the ground-station link's MAVLink system and component ids
+        ("link_sysid", _I), ("link_compid", _I),
     ]
 
 
@@ -56,6 +59,8 @@ MODES_CONFIG_DEFAULTS: dict[str, Any] = {
     "waypoint_count": 0, "waypoints": [],
     # the altitude hold's initial integrators: none
     "alt_integral_upright": 0.0, "alt_integral_inverted": 0.0,
+    # ABI 15: MAVLink system 1, component 1 (MAV_COMP_ID_AUTOPILOT1)
+    "link_sysid": 1, "link_compid": 1,
 }
 
 
@@ -223,6 +228,7 @@ class Board:
         self._command = SilCommand()
         self._act = SilActuators()
         self._step = lib.sil_board_step
+        self._tx = ctypes.create_string_buffer(LINK_TX_MAX)
 
     @property
     def sensors(self) -> SilSensors:
@@ -238,6 +244,24 @@ class Board:
         self._step(self._state, ctypes.byref(self._sensors), ctypes.byref(self._command),
                    ctypes.byref(self._act))
         return self._act
+
+    # --- ABI 15: the ground-station link (firmware/fw_link.h): bytes only ---
+    def link_rx(self, data: bytes) -> None:
+        """Bytes from the ground station into the firmware's MAVLink parser."""
+        if data:
+            self._lib.sil_link_rx(self._state, data, len(data))
+
+    def link_tx(self, cap: int = LINK_TX_MAX) -> bytes:
+        """Up to cap bytes the firmware has queued for the ground station."""
+        n = int(self._lib.sil_link_tx(self._state, self._tx, min(cap, LINK_TX_MAX)))
+        return self._tx.raw[:n]
+
+    def link_counters(self) -> dict[str, int]:
+        """The link's counters by their C names (frames received, dropped by
+        reason, sent, queue overflows)."""
+        lib = self._lib
+        return {lib.sil_link_counter_name(i).decode(): int(lib.sil_link_counter(self._state, i))
+                for i in range(lib.sil_link_counter_count())}
 
 
 def compiled_table(lib_path: str | os.PathLike[str] | None = None) -> dict[str, list[dict[str, Any]]]:
@@ -280,3 +304,14 @@ def _declare(lib: ctypes.CDLL) -> None:
     lib.sil_board_step.restype = None
     lib.sil_board_step.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
                                    ctypes.c_void_p]
+    # ABI 15: the ground-station link
+    lib.sil_link_rx.restype = None
+    lib.sil_link_rx.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
+    lib.sil_link_tx.restype = ctypes.c_size_t
+    lib.sil_link_tx.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t]
+    lib.sil_link_counter_count.restype = ctypes.c_int
+    lib.sil_link_counter_count.argtypes = []
+    lib.sil_link_counter_name.restype = ctypes.c_char_p
+    lib.sil_link_counter_name.argtypes = [ctypes.c_int]
+    lib.sil_link_counter.restype = ctypes.c_uint32
+    lib.sil_link_counter.argtypes = [ctypes.c_void_p, ctypes.c_int]

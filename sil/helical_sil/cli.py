@@ -21,15 +21,16 @@ from helical_sil.sim import SimError
 # mirrored in sil/README.md ("Exit status").
 EXIT_OK, EXIT_CRITERION, EXIT_INPUT, EXIT_RUNTIME, EXIT_BUG = 0, 1, 2, 3, 4
 EXIT_STATUS = """exit status:
-  0  every pass criterion passed (compare: the table was printed)
+  0  every pass criterion passed (compare: the table was printed; serve: the
+     flight ran to --duration or was stopped by Ctrl-C / SIGTERM)
   1  a pass criterion failed (batch: in at least one scenario; upsets: an upset
      was not recovered, or a known failure recovered)
   2  bad input or usage, found before anything is flown: a scenario or aircraft
      file that does not load (the message names the file and the key), an --out
      that is not a writable folder, a bad argument, an unreadable metrics.json
   3  the board library or JSBSim failed (missing or stale library, a parameter
-     the board refused, a run that could not finish), or writing an output
-     failed after the flight
+     the board refused, a run that could not finish, serve: ground contact),
+     or writing an output failed after the flight
   4  an internal error of the harness (a bug: the traceback is printed)"""
 
 RUN_OUTPUTS = ("telemetry.csv", "metrics.json")
@@ -741,6 +742,47 @@ def _add_options_parser(sub: Any) -> None:
     _add_backend_args(o, "parallel runs (default 1)")
     o.set_defaults(func=cmd_options)
 # --- end law options ---
+def cmd_serve(args: argparse.Namespace) -> int:
+    from helical_sil import serve as sv
+    speed = 0.0 if args.fast else args.speed
+    try:
+        return sv.run_serve(Path(args.scenario), args.mavlink, speed, args.duration, args.mode,
+                            args.board_lib, args.sysid,
+                            Path(args.stats_json) if args.stats_json else None)
+    except sv.ServeError as e:
+        raise UsageError(str(e)) from None
+
+
+def _add_serve_parser(sub: Any) -> None:
+    s = sub.add_parser(
+        "serve", **_HELP, help="fly a scenario's aircraft live for a ground station (MAVLink)",
+        description="Fly the scenario's aircraft in JSBSim, the firmware in its own flight "
+                    "modes (on its estimate unless the scenario's [attitude] says truth), paced "
+                    "at --speed x real time, and answer a ground station over UDP with "
+                    "MAVLink 2: QGroundControl, MAVProxy or pymavlink watch the flight, read "
+                    "and set parameters, upload a mission and switch modes (manual, FBW, "
+                    "AUTO = waypoint, RTL = return-to-home). The firmware's link builds and "
+                    "parses every message; this command only moves bytes. The pilot is a "
+                    "steady transmitter (sticks centred, throttle at the trim, the mode switch "
+                    "at --mode). Prints the link's counters at the end (Ctrl-C ends it).")
+    s.add_argument("scenario", help="scenario TOML file (its aircraft, initial state, air, "
+                                    "sensors; its [modes] and waypoints if it has them)")
+    s.add_argument("--mavlink", default="udpout:127.0.0.1:14550",
+                   help="udpout:HOST:PORT sends to a ground station listening there (the "
+                        "default, udpout:127.0.0.1:14550, is where QGroundControl listens); "
+                        "udpin:HOST:PORT listens and answers whoever sends")
+    s.add_argument("--speed", type=float, default=1.0,
+                   help="N x real time (default 1; 0: as fast as possible)")
+    s.add_argument("--fast", action="store_true", help="as fast as possible (= --speed 0)")
+    s.add_argument("--duration", type=float, default=None,
+                   help="stop after this many seconds of flight (default: until Ctrl-C)")
+    s.add_argument("--mode", choices=tuple(("manual", "fbw", "waypoint", "rth")), default=None,
+                   help="where the transmitter's mode switch sits (default: the scenario's "
+                        "first [[rc]] mode, else fbw)")
+    s.add_argument("--sysid", type=int, default=1, help="MAVLink system id (default 1)")
+    s.add_argument("--stats-json", default=None,
+                   help="also write the end's counters (UDP and the board's link) to this file")
+    s.set_defaults(func=cmd_serve)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -807,6 +849,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_aircraft_parser(sub)
     _add_tune_parser(sub)
     _add_options_parser(sub)  # issue 17
+    _add_serve_parser(sub)  # ground-station link (issue 15)
     return ap
 
 
