@@ -321,6 +321,28 @@ static void trimmed_law(fw_t *fw, const fw_nav_t *nav, uint8_t pitch_mode, uint8
     fw->law_flags = lo->flags;
 }
 
+/* The guided turn command's slew with roll_in on, in Q16 rad/s per control
+ * step: the modes' turn_slew, or the turn-rate change whose bank rate at
+ * wings level is roll_in_rate_max, if that is slower. The turn rate of a
+ * coordinated turn is g tan(phi) / S, so d(turn)/dt = g / (S cos^2 phi) *
+ * d(phi)/dt >= g / S * d(phi)/dt: at this slew the law's target bank rate
+ * (ht_options.c) is at most roll_in_rate_max at every bank, and the roll-in
+ * acts for the whole entry instead of the few steps of the stick slew.
+ * S is the airspeed the law uses (floored at v_min); g is 981 cm/s^2 (0.03 %
+ * above 980.665: the slew is that much faster). At least 1 LSB. */
+static int32_t guided_turn_slew(const fw_t *fw, int16_t airspeed_cm_s)
+{
+    const int32_t v_min = fw->cfg->law.v_min_cm_s;
+    const int32_t s_cm_s = (airspeed_cm_s < v_min) ? v_min : (int32_t)airspeed_cm_s;
+    /* roll_in_rate_max <= 8 rad/s = 2^19 in Q16: times 981 below 2^29 */
+    const int32_t per_s = (fw->cfg->law.roll_in_rate_max_rad_s * 981) / s_cm_s;
+    int32_t step = per_s / (int32_t)fw->cfg->modes.rate_hz;
+    if (step > fw->modes.turn_slew_rad_s_per_tick) {
+        step = fw->modes.turn_slew_rad_s_per_tick;
+    }
+    return (step < 1) ? 1 : step;
+}
+
 /* Guided: holds -> upset guard -> law; the surfaces go straight to the mixer. */
 static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_output_t *o,
                    os_command_t *cmd)
@@ -345,12 +367,13 @@ static void guided(fw_t *fw, const fw_guided_t *c, const fw_nav_t *nav, fw_outpu
     law_input(li, nav);
     li->turn_rate_rad_s = c->turn_rate_rad_s;
     /* With roll_in on, a guided command (the SIL's scenarios give steps) is
-     * slewed at the modes' turn_slew, as the modes slew theirs: the
-     * derivative of a step would ask for an unbounded bank rate. */
+     * slewed: the derivative of a step would ask for an unbounded bank rate.
+     * The slew is the modes' turn_slew or the one that asks for at most
+     * roll_in_rate_max of bank rate, whichever is slower (guided_turn_slew). */
     q16_t turn_q16 = (q16_t)c->turn_rate_rad_s * 32;
     if (fw->cfg->law.roll_in != 0u) {
         if (fw->turn_primed != 0u) {
-            const int32_t step = fw->modes.turn_slew_rad_s_per_tick;
+            const int32_t step = guided_turn_slew(fw, nav->airspeed_cm_s);
             turn_q16 =
                 q_add_sat32(fw->guided_turn_q16,
                             q_clamp32(q_sub_sat32(turn_q16, fw->guided_turn_q16), -step, step));

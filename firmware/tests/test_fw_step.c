@@ -173,9 +173,32 @@ static void test_guided_path_is_the_library_chain(void)
 
 /* The law's option inputs (docs/control-law.md "Extensions beyond the
  * seed"). roll_in off: a guided step reaches the law as a step, with no
- * turn acceleration. roll_in on: it is slewed at the modes' turn_slew
- * (180 deg/s^2 = 3.1416 rad/s^2: 0.07854 rad/s per 40 Hz step), and the law
- * is given that slope as its turn acceleration, 0 once the slew is done. */
+ * turn acceleration. roll_in on: it is slewed, and the law is given that
+ * slope as its turn acceleration, 0 once the slew is done. The slew is the
+ * modes' turn_slew (180 deg/s^2 = 3.1416 rad/s^2: 0.07854 rad/s per 40 Hz
+ * step) when roll_in_rate_max allows it (8 rad/s at 20 m/s: 0.0981 rad/s per
+ * step), else the one of roll_in_rate_max (test below). */
+static void ramp_guided_turn(fw_guided_t *g, double per_step, int steps)
+{
+    const double target = 0.3;
+    g->turn_rate_rad_s = Q11_FROM_REAL(0.3);
+    int k = 0;
+    for (; k < 40 && (k == 0 || out.law_in.turn_rate_rad_s < g->turn_rate_rad_s); ++k) {
+        (void)run_until_control();
+        const double expect = fmin(target, (k + 1) * per_step);
+        TEST_ASSERT_INT_WITHIN(2, (int)lround(expect * 2048.0), out.law_in.turn_rate_rad_s);
+        if (expect < target) {
+            /* the slope in Q11, within the Q16 step's rounding */
+            TEST_ASSERT_INT_WITHIN(64, (int)lround(per_step * 40.0 * 2048.0),
+                                   out.law_in.turn_accel_rad_s2);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(steps, k);
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(Q11_FROM_REAL(0.3), out.law_in.turn_rate_rad_s);
+    TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2);
+}
+
 static void test_roll_in_slews_a_guided_step(void)
 {
     fw_guided_t g;
@@ -190,26 +213,36 @@ static void test_roll_in_slews_a_guided_step(void)
     TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2);
 
     cfg.law.roll_in = 1u;
+    cfg.law.roll_in_rate_max_rad_s = Q16_FROM_REAL(8.0);
     g.turn_rate_rad_s = 0;
     TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
     (void)run_until_control();
     TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2); /* the first step: no history */
-    g.turn_rate_rad_s = Q11_FROM_REAL(0.3);
-    const double per_step = 3.14159265 / 40.0; /* rad/s */
-    int k = 0;
-    for (; k < 10 && (k == 0 || out.law_in.turn_rate_rad_s < g.turn_rate_rad_s); ++k) {
-        (void)run_until_control();
-        const double expect = fmin(0.3, (k + 1) * per_step);
-        TEST_ASSERT_INT_WITHIN(2, (int)lround(expect * 2048.0), out.law_in.turn_rate_rad_s);
-        if (expect < 0.3) {
-            /* the slope: 3.1416 rad/s^2 in Q11, within the Q16 step's rounding */
-            TEST_ASSERT_INT_WITHIN(64, 6434, out.law_in.turn_accel_rad_s2);
-        }
-    }
-    TEST_ASSERT_EQUAL_INT(4, k); /* 0.3 / 0.0785: four steps */
+    ramp_guided_turn(&g, 3.14159265 / 40.0, 4);               /* 0.3 / 0.0785: four steps */
+}
+
+/* With roll_in_rate_max = 1 rad/s at 20 m/s the guided slew is the bank
+ * rate's: g / S * 1 rad/s = 0.4905 rad/s^2, 0.01226 rad/s per 40 Hz step
+ * (Q16 floor of 65536 * 981 / 2000 / 40 = 803 LSB), so 0.3 rad/s takes 25
+ * steps; with no airspeed it is floored at v_min (5 m/s): 4x the slew. */
+static void test_roll_in_slew_follows_the_bank_rate_bound(void)
+{
+    fw_guided_t g;
+    memset(&g, 0, sizeof g);
+    g.throttle = Q14_ONE / 2;
+    in.guided = &g;
+    cfg.law.roll_in = 1u;
+    cfg.law.roll_in_rate_max_rad_s = Q16_FROM_REAL(1.0);
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
     (void)run_until_control();
-    TEST_ASSERT_EQUAL_INT16(Q11_FROM_REAL(0.3), out.law_in.turn_rate_rad_s);
-    TEST_ASSERT_EQUAL_INT16(0, out.law_in.turn_accel_rad_s2);
+    ramp_guided_turn(&g, 803.0 / 65536.0, 25);
+
+    in.sensors.airspeed_cm_s = 0; /* floored at v_min = 5 m/s: 3213 LSB per step */
+    g.turn_rate_rad_s = 0;
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    ramp_guided_turn(&g, 3213.0 / 65536.0, 7);
+    in.sensors.airspeed_cm_s = 2000;
 }
 
 /* The lateral specific force reaches the law low-passed at the IMU rate
@@ -292,6 +325,7 @@ int main(void)
     RUN_TEST(test_guided_path_is_the_library_chain);
     RUN_TEST(test_pilot_path_rc_loss_policy);
     RUN_TEST(test_roll_in_slews_a_guided_step);
+    RUN_TEST(test_roll_in_slew_follows_the_bank_rate_bound);
     RUN_TEST(test_lateral_force_is_filtered_into_the_law);
     RUN_TEST(test_extreme_gps_and_baro_values);
     return UNITY_END();
