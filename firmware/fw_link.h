@@ -171,6 +171,25 @@ void fw_link_after_step(fw_link_t *l, const fw_output_t *out, uint32_t now_ms);
  * frame may be split across calls). Returns the bytes written. */
 size_t fw_link_tx(fw_link_t *l, uint8_t *buf, size_t cap);
 
+/* --- flight modes as HEARTBEAT.custom_mode (fw_link_command.c) ----------- */
+
+/* The custom_mode of each flight mode: the numbers fixed-wing ground
+ * stations already name (MAVProxy, Mission Planner and QGroundControl's
+ * ArduPilot plugin read a fixed-wing custom_mode with the ArduPlane table),
+ * so that a user sees "MANUAL", "FBWA", "AUTO" and "RTL" and can type
+ * them; no other number is accepted. */
+typedef enum {
+    FW_LINK_CUSTOM_MANUAL = 0,    /* HT_MODE_MANUAL */
+    FW_LINK_CUSTOM_FBW = 5,       /* HT_MODE_FBW: "FBWA" */
+    FW_LINK_CUSTOM_WAYPOINT = 10, /* HT_MODE_WAYPOINT: "AUTO" */
+    FW_LINK_CUSTOM_RTH = 11       /* HT_MODE_RTH: "RTL" */
+} fw_link_custom_mode_t;
+
+/* The custom_mode of an ht_mode_t (HT_MODE_MANUAL for anything else). */
+uint32_t fw_link_custom_mode(uint8_t ht_mode);
+/* The ht_mode_t of a custom_mode, or -1 for a number that names none. */
+int32_t fw_link_mode_of_custom(uint32_t custom_mode);
+
 /* --- the parameter table as MAVLink sees it (fw_link_param_table.c) ------- */
 
 /* Parameters on the link: every row of every group of params.def. */

@@ -9,8 +9,8 @@
  * step puts the pulse that selects it in place of the mode switch's
  * (fw_step.c), so the modes' own rules hold: the RC-loss failsafe still
  * wins (return home), and the pilot takes the mode back by moving the
- * switch. Modes: custom_mode = ht_mode_t (0 manual, 1 fly-by-wire,
- * 2 waypoint, 3 return-to-home); without MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
+ * switch. Modes: custom_mode = fw_link_custom_mode_t (0 manual, 5 fly-by-wire,
+ * 10 waypoint, 11 return-to-home); without MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
  * the base mode's flags choose (AUTO: waypoint, STABILIZE: fly-by-wire,
  * else manual).
  */
@@ -28,11 +28,33 @@ static void command_ack(fw_link_t *l, const mavlink_message_t *msg, uint16_t com
     (void)FW_LINK_QUEUE(l, COMMAND_ACK, a);
 }
 
+/* custom_mode of each ht_mode_t, in its order */
+static const uint32_t custom_of_mode[HT_MODE_COUNT] = {
+    (uint32_t)FW_LINK_CUSTOM_MANUAL, (uint32_t)FW_LINK_CUSTOM_FBW,
+    (uint32_t)FW_LINK_CUSTOM_WAYPOINT, (uint32_t)FW_LINK_CUSTOM_RTH};
+
+uint32_t fw_link_custom_mode(uint8_t ht_mode)
+{
+    return (ht_mode < (uint8_t)HT_MODE_COUNT) ? custom_of_mode[ht_mode]
+                                              : (uint32_t)FW_LINK_CUSTOM_MANUAL;
+}
+
+int32_t fw_link_mode_of_custom(uint32_t custom_mode)
+{
+    int32_t mode = -1;
+    for (uint8_t m = 0u; m < (uint8_t)HT_MODE_COUNT; ++m) {
+        if (custom_of_mode[m] == custom_mode) {
+            mode = (int32_t)m;
+        }
+    }
+    return mode;
+}
+
 /* the ht_mode_t a base / custom mode pair asks for, or -1 */
 static int32_t mode_of(uint32_t base, uint32_t custom)
 {
     if ((base & (uint32_t)MAV_MODE_FLAG_CUSTOM_MODE_ENABLED) != 0u) {
-        return (custom < (uint32_t)HT_MODE_COUNT) ? (int32_t)custom : -1;
+        return fw_link_mode_of_custom(custom);
     }
     if ((base & (uint32_t)MAV_MODE_FLAG_AUTO_ENABLED) != 0u) {
         return (int32_t)HT_MODE_WAYPOINT;

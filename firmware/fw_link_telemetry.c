@@ -74,7 +74,7 @@ static void heartbeat(fw_link_t *l)
         base |= (uint8_t)MAV_MODE_FLAG_SAFETY_ARMED; /* the servos and the motor are driven */
     }
     hb.base_mode = base;
-    hb.custom_mode = mode; /* ht_mode_t: 0 manual, 1 fly-by-wire, 2 waypoint, 3 RTH */
+    hb.custom_mode = fw_link_custom_mode(mode); /* 0 manual, 5 FBW, 10 waypoint, 11 RTH */
     if (l->have_output == 0u) {
         hb.system_status = (uint8_t)MAV_STATE_BOOT;
     } else if (o->failsafe != 0u) {

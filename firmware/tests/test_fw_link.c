@@ -201,7 +201,7 @@ static void test_telemetry_content(void)
     mavlink_msg_heartbeat_decode(m, &hb);
     TEST_ASSERT_EQUAL_UINT8(MAV_TYPE_FIXED_WING, hb.type);
     TEST_ASSERT_EQUAL_UINT8(MAV_AUTOPILOT_GENERIC, hb.autopilot);
-    TEST_ASSERT_EQUAL_UINT32(HT_MODE_MANUAL, hb.custom_mode);
+    TEST_ASSERT_EQUAL_UINT32(FW_LINK_CUSTOM_MANUAL, hb.custom_mode);
     TEST_ASSERT_TRUE((hb.base_mode & MAV_MODE_FLAG_MANUAL_INPUT_ENABLED) != 0u);
     TEST_ASSERT_TRUE((hb.base_mode & MAV_MODE_FLAG_CUSTOM_MODE_ENABLED) != 0u);
     TEST_ASSERT_EQUAL_UINT8(MAV_STATE_ACTIVE, hb.system_status);
@@ -681,17 +681,36 @@ static void do_set_mode(uint32_t custom)
     send(&m);
 }
 
+/* custom_mode <-> ht_mode_t: the four fixed-wing numbers and nothing else,
+ * over every number up to 1000 and the uint32 ends */
+static void test_custom_mode_numbers(void)
+{
+    const uint32_t want[HT_MODE_COUNT] = {0u, 5u, 10u, 11u};
+    for (uint8_t m = 0u; m < (uint8_t)HT_MODE_COUNT; ++m) {
+        TEST_ASSERT_EQUAL_UINT32(want[m], fw_link_custom_mode(m));
+        TEST_ASSERT_EQUAL_INT32(m, fw_link_mode_of_custom(want[m]));
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, fw_link_custom_mode((uint8_t)HT_MODE_COUNT));
+    TEST_ASSERT_EQUAL_UINT32(0u, fw_link_custom_mode(UINT8_MAX));
+    unsigned named = 0u;
+    for (uint32_t c = 0u; c <= 1000u; ++c) {
+        named += (fw_link_mode_of_custom(c) >= 0) ? 1u : 0u;
+    }
+    TEST_ASSERT_EQUAL_UINT(4u, named);
+    TEST_ASSERT_EQUAL_INT32(-1, fw_link_mode_of_custom(UINT32_MAX));
+}
+
 static void test_mode_commands(void)
 {
     steps(40u);
     unsigned from = nrx;
-    do_set_mode(HT_MODE_FBW);
+    do_set_mode(FW_LINK_CUSTOM_FBW);
     TEST_ASSERT_EQUAL_INT(MAV_RESULT_ACCEPTED, command_result(from, MAV_CMD_DO_SET_MODE));
     steps(40u);
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_FBW, out.modes.mode);
     mavlink_heartbeat_t hb;
     mavlink_msg_heartbeat_decode(last_id(MAVLINK_MSG_ID_HEARTBEAT, from), &hb);
-    TEST_ASSERT_EQUAL_UINT32(HT_MODE_FBW, hb.custom_mode);
+    TEST_ASSERT_EQUAL_UINT32(FW_LINK_CUSTOM_FBW, hb.custom_mode);
     TEST_ASSERT_TRUE((hb.base_mode & MAV_MODE_FLAG_STABILIZE_ENABLED) != 0u);
 
     mavlink_message_t m;
@@ -704,7 +723,7 @@ static void test_mode_commands(void)
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_RTH, out.modes.mode);
 
     mavlink_msg_set_mode_pack(GCS_SYS, GCS_COMP, &m, OUR_SYS, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED,
-                              HT_MODE_WAYPOINT);
+                              FW_LINK_CUSTOM_WAYPOINT);
     send(&m);
     steps(2u);
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_WAYPOINT, out.modes.mode);
@@ -713,12 +732,12 @@ static void test_mode_commands(void)
     TEST_ASSERT_EQUAL_INT(MAV_RESULT_DENIED, command_result(from, MAV_CMD_DO_SET_MODE));
     steps(2u);
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_WAYPOINT, out.modes.mode);
-    do_set_mode(HT_MODE_MANUAL);
+    do_set_mode(FW_LINK_CUSTOM_MANUAL);
     steps(2u);
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_MANUAL, out.modes.mode);
 
     /* the RC-loss failsafe wins over the ground station */
-    do_set_mode(HT_MODE_FBW);
+    do_set_mode(FW_LINK_CUSTOM_FBW);
     steps(2u);
     TEST_ASSERT_EQUAL_UINT8(HT_MODE_FBW, out.modes.mode);
     in.rc_fresh = 0u;
@@ -915,6 +934,7 @@ int main(void)
     RUN_TEST(test_mission_upload_retries_then_cancels);
     RUN_TEST(test_mission_refusals);
     RUN_TEST(test_mission_before_home_waits_for_the_fix);
+    RUN_TEST(test_custom_mode_numbers);
     RUN_TEST(test_mode_commands);
     RUN_TEST(test_preflight_storage_calls_the_board);
     RUN_TEST(test_rx_drops_and_counts_bad_frames);

@@ -43,7 +43,7 @@ def test_a_second_of_flight_is_a_second_of_telemetry(board_lib: str) -> None:
     kinds = [m.get_type() for m in msgs]
     assert kinds.count("HEARTBEAT") == 1 and kinds.count("ATTITUDE") == 10, kinds
     hb = msgs[kinds.index("HEARTBEAT")]
-    assert hb.type == mavutil.mavlink.MAV_TYPE_FIXED_WING and hb.custom_mode == 1  # FBW
+    assert hb.type == mavutil.mavlink.MAV_TYPE_FIXED_WING and hb.custom_mode == 5  # FBW ("FBWA")
     assert b.link_counters()["tx_frames"] - tx0 == len(msgs)
     assert b.link_tx() == b""  # drained
 

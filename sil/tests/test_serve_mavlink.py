@@ -33,7 +33,7 @@ from helical_sil.serve import Flight, parse_endpoint, ServeError  # noqa: E402
 
 SCENARIO = SIL_DIR / "scenarios" / "c172p_level_hold.toml"
 # HEARTBEAT custom_mode of each flight mode (docs/mavlink.md)
-CUSTOM_MODE = {"manual": 0, "fbw": 1, "waypoint": 2, "rth": 3}
+CUSTOM_MODE = {"manual": 0, "fbw": 5, "waypoint": 10, "rth": 11}
 SPEED = 10.0  # x real time: the whole module stays well under a minute and a half
 
 
