@@ -720,7 +720,10 @@ def _add_options_parser(sub: Any) -> None:
                     "(measured per row from its trim), steady turn-rate error, steady "
                     "sideslip RMS, bank overshoot, altitude lost in the rolls, turn-rate RMS "
                     "at 2x. Writes table.md, table.csv, options.png, result.json. Options: "
-                    + ", ".join(f"{k} ({w}, on = {v:g})" for k, w, v in opt.OPTIONS) + ".")
+                    + ", ".join(f"{k} ({w}, on = {v:g})" for k, w, v in opt.OPTIONS)
+                    + ". With roll_in on, roll_in_rate_max is each row's reachable bank rate "
+                    "(the full-aileron roll's mean rate to 30 deg, the slower way) unless "
+                    "--set or --on gives it.")
     o.add_argument("scenarios", nargs="*", help="scenario folder(s) or files")
     o.add_argument("--aircraft", nargs="+", default=None, metavar="FILE|NAME",
                    help="aircraft files (e.g. tune's *_tuned.toml) or names of "

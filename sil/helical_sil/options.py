@@ -218,6 +218,35 @@ def limit_of(d: dict[str, Any]) -> Any:
                        d["airspeed_m_s"], d["trimmed"])
 
 
+ROLL_IN_PROBE_BANK_DEG = 30.0
+
+
+def reachable_roll_rate(d: dict[str, Any] | None) -> float | None:
+    """roll_in_rate_max for a row (rad/s): the mean bank rate of the
+    full-aileron roll to 30 deg in its slower direction, a bank rate the
+    airframe reaches (the row's documented meaning); None when the roll
+    does not reach 30 deg either way or was not measured. Clamped to the
+    row's bounds (0, 8]."""
+    if not d or "error" in d:
+        return None
+    fa = limit_of(d)
+    times = [fa.time_to_bank(ROLL_IN_PROBE_BANK_DEG), fa.time_to_bank(-ROLL_IN_PROBE_BANK_DEG)]
+    if any(t is None or t <= 0.0 for t in times):
+        return None
+    rate = math.radians(ROLL_IN_PROBE_BANK_DEG) / max(t for t in times if t is not None)
+    return round(min(max(rate, 0.01), 8.0), 3)
+
+
+def with_roll_in_rate(overrides: dict[str, float], limit: dict[str, Any] | None,
+                      fixed: bool) -> dict[str, float]:
+    """A variant's overrides for one row: with roll_in on and no
+    roll_in_rate_max given (fixed), the row's reachable_roll_rate."""
+    if not overrides.get("roll_in") or fixed:
+        return overrides
+    rate = reachable_roll_rate(limit)
+    return overrides if rate is None else {**overrides, "roll_in_rate_max": rate}
+
+
 def row_metrics(m: dict[str, Any], m2: dict[str, Any] | None,
                 limit: dict[str, Any] | None) -> dict[str, Any]:
     """One row of the table from a run's metrics (m), its 2x run (m2) and
@@ -449,7 +478,9 @@ def run(c: Campaign, out: Path, jobs: int, board_lib: str | None, backend: str =
     def fly_variants(vv: list[Variant]) -> None:
         todo = [(r, v, s) for v in vv for r in c.rows for s in ((1.0, 2.0) if c.margin else (1.0,))]
         t0 = time.perf_counter()
-        res = map_ordered(fly, [Job(c.rows[r], v.name, v.overrides, s, board_lib)
+        fixed = "roll_in_rate_max" in c.base or "roll_in_rate_max" in c.on_values
+        res = map_ordered(fly, [Job(c.rows[r], v.name,
+                                    with_roll_in_rate(v.overrides, lim[r], fixed), s, board_lib)
                                 for r, v, s in todo], jobs=jobs, backend=backend,
                           address=address,
                           progress=(lambda k, _m: progress(k, len(todo), f"{time.perf_counter() - t0:.0f} s"))

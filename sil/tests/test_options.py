@@ -57,6 +57,23 @@ def test_full_aileron_times_each_way_and_the_coordinated_bank() -> None:
     assert coordinated_bank_deg(10.0, 50.0) == pytest.approx(41.6649, abs=1e-4)
 
 
+def test_roll_in_rate_is_the_rows_reachable_bank_rate() -> None:
+    t = np.linspace(0.0, 2.0, 241)
+    d = {"t_s": t.tolist(), "right": (60.0 * t).tolist(), "left": (-30.0 * t).tolist(),
+         "airspeed_m_s": 50.0, "trimmed": True}
+    # 30 deg in 1.0 s the slower way (left): 0.524 rad/s
+    assert options.reachable_roll_rate(d) == pytest.approx(round(math.radians(30.0), 3))
+    assert options.reachable_roll_rate(None) is None
+    assert options.reachable_roll_rate({"error": "trim failed"}) is None
+    slow = {**d, "left": (-10.0 * t).tolist()}  # never reaches -30 deg in 2 s
+    assert options.reachable_roll_rate(slow) is None
+    on = {"roll_in": 1.0, "kp_sideslip": 0.0}
+    assert options.with_roll_in_rate(on, d, fixed=False)["roll_in_rate_max"] == pytest.approx(0.524)
+    assert "roll_in_rate_max" not in options.with_roll_in_rate(on, d, fixed=True)
+    assert "roll_in_rate_max" not in options.with_roll_in_rate({"roll_in": 0.0}, d, fixed=False)
+    assert options.with_roll_in_rate(on, slow, fixed=False) == on
+
+
 def test_near_vertical_aileron_activity() -> None:
     n = 200
     dt = 0.025
