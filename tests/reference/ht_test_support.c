@@ -197,3 +197,18 @@ void ts_errs_print(const char *title, const ts_err_t errs[TS_N_OUTPUTS])
                errs[i].lsb > 1.0 / 4096.0 ? "Q11 rad/s" : "Q14");
     }
 }
+
+ht_params_t ts_gains3(q16_t kp, q16_t kff, q16_t kd, int32_t v_ref, int32_t v_min, uint8_t schedule,
+                      q16_t max_tilt, uint8_t pitch_mode)
+{
+    ht_params_t p = HT_PARAMS_DEFAULT;
+    p.kp_aileron = p.kp_elevator = p.kp_rudder = kp;
+    p.kff_aileron = p.kff_elevator = p.kff_rudder = kff;
+    p.kd_aileron = p.kd_elevator = p.kd_rudder = kd;
+    p.v_ref_cm_s = v_ref;
+    p.v_min_cm_s = v_min;
+    p.schedule = schedule;
+    p.max_tilt = max_tilt;
+    p.pitch_mode = pitch_mode;
+    return p;
+}

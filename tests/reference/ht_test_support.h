@@ -57,4 +57,9 @@ void ts_errs_add_step(ts_err_t errs[TS_N_OUTPUTS], const ht_output_t *core,
                       const ht_ref_output_t *ref);
 void ts_errs_print(const char *title, const ts_err_t errs[TS_N_OUTPUTS]);
 
+/* The defaults with the same kp, kff and kd (Q16) on every axis and the
+ * given airspeeds, schedule, tilt limit and pitch method: the sweeps' sets. */
+ht_params_t ts_gains3(q16_t kp, q16_t kff, q16_t kd, int32_t v_ref, int32_t v_min, uint8_t schedule,
+                      q16_t max_tilt, uint8_t pitch_mode);
+
 #endif

@@ -299,22 +299,6 @@ static void test_options_on_match_the_reference_gain_sets(void)
     TEST_ASSERT_FALSE(failed);
 }
 
-/* A parameter set with the same kp, kff and kd on every axis. */
-static ht_params_t gains3(q16_t kp, q16_t kff, q16_t kd, int32_t v_ref, int32_t v_min,
-                          uint8_t schedule, uint8_t pitch_mode)
-{
-    ht_params_t p = HT_PARAMS_DEFAULT;
-    p.kp_aileron = p.kp_elevator = p.kp_rudder = kp;
-    p.kff_aileron = p.kff_elevator = p.kff_rudder = kff;
-    p.kd_aileron = p.kd_elevator = p.kd_rudder = kd;
-    p.v_ref_cm_s = v_ref;
-    p.v_min_cm_s = v_min;
-    p.schedule = schedule;
-    p.max_tilt = HT_MAX_TILT_LIMIT_Q16;
-    p.pitch_mode = pitch_mode;
-    return p;
-}
-
 /* The legal corners with the options at theirs: the largest rate gain (512)
  * times the largest roll-in bound (8 rad/s), kp_sideslip 64, the smallest
  * and the largest fade. */
@@ -329,17 +313,22 @@ static void test_options_on_match_the_reference_legal_corners(void)
         ht_params_t p;
     } corners[] = {
         {"options at their limits; kp 64, kff 8, kd 8, schedule, scale 32",
-         with_options(gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, 0), r8, g, Q16_ONE)},
+         with_options(
+             ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, HT_MAX_TILT_LIMIT_Q16, 0),
+             r8, g, Q16_ONE)},
         {"options at their limits; kp 64, kff 14, kd 64, no schedule, scale 32",
-         with_options(gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, 0), r8, g, 1)},
+         with_options(ts_gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, HT_MAX_TILT_LIMIT_Q16, 0),
+                      r8, g, 1)},
         {"options at their limits; kp 64, kff 1, kd 15, schedule, scale 32, tilt cross",
-         with_options(gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, 1), r8, g,
-                      Q16_FROM_REAL(0.01))},
+         with_options(
+             ts_gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, HT_MAX_TILT_LIMIT_Q16, 1), r8,
+             g, Q16_FROM_REAL(0.01))},
         {"options: roll-in bound 1 LSB, fade 0.5; all gains 64, schedule, scale 4",
-         with_options(gains3(g, g, g, v_hi, (v_hi + 3) / 4, 1, 0), 1, Q16_ONE, Q16_ONE / 2)},
+         with_options(ts_gains3(g, g, g, v_hi, (v_hi + 3) / 4, 1, HT_MAX_TILT_LIMIT_Q16, 0), 1,
+                      Q16_ONE, Q16_ONE / 2)},
         {"options: kp 1, kff 0, kd 1, sideslip 0.5, fade 0.1, v_ref = v_min = 1 m/s",
-         with_options(gains3(Q16_ONE, 0, Q16_ONE, 100, 100, 0, 0), Q16_ONE, Q16_ONE / 2,
-                      Q16_ONE / 10)},
+         with_options(ts_gains3(Q16_ONE, 0, Q16_ONE, 100, 100, 0, HT_MAX_TILT_LIMIT_Q16, 0),
+                      Q16_ONE, Q16_ONE / 2, Q16_ONE / 10)},
     };
     const int n = (int)(sizeof corners / sizeof corners[0]);
     int failed = 0;

@@ -268,22 +268,6 @@ static int32_t ht_v_ref_max_for(int32_t v_min_cm_s)
     return v_min_cm_s * HT_SCALE_MAX;
 }
 
-/* A parameter set with the same kp, kff and kd (Q16) on every axis. */
-static ht_params_t gains3(q16_t kp, q16_t kff, q16_t kd, int32_t v_ref, int32_t v_min,
-                          uint8_t schedule, q16_t max_tilt, uint8_t pitch_mode)
-{
-    ht_params_t p = HT_PARAMS_DEFAULT;
-    p.kp_aileron = p.kp_elevator = p.kp_rudder = kp;
-    p.kff_aileron = p.kff_elevator = p.kff_rudder = kff;
-    p.kd_aileron = p.kd_elevator = p.kd_rudder = kd;
-    p.v_ref_cm_s = v_ref;
-    p.v_min_cm_s = v_min;
-    p.schedule = schedule;
-    p.max_tilt = max_tilt;
-    p.pitch_mode = pitch_mode;
-    return p;
-}
-
 /* The corners of the legal space: kp at its limit everywhere, the rate gain
  * kff * v_ref / v_min + kd * s_p,max at its limit (512) split every way at
  * the largest scale v_ref / v_min (32), schedule on and off, both pitch
@@ -301,24 +285,24 @@ static void test_sweep_legal_corners(void)
         ht_params_t p;
     } corners[] = {
         {"kp 64, kff 8, kd 8, schedule, scale 32",
-         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
         {"kp 64, kff 1, kd 15, schedule, scale 32",
-         gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
         {"kp 64, kff 15, kd 1, schedule, scale 32, tilt cross",
-         gains3(g, 15 * Q16_ONE, Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
+         ts_gains3(g, 15 * Q16_ONE, Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
         {"kp 64, kff 14, kd 64, no schedule, scale 32",
-         gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
         {"kp 64, kff 8, kd 8, schedule, scale 32, smallest v_min",
-         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
-                HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
+                   HT_PITCH_EARTH_FRAME)},
         {"all gains 64, schedule, scale 4",
-         gains3(g, g, g, v_hi, (v_hi + 3) / 4, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, g, g, v_hi, (v_hi + 3) / 4, 1, t, HT_PITCH_EARTH_FRAME)},
         {"all gains 64, schedule, v_ref = v_min = 1 m/s",
-         gains3(g, g, g, v_lo, v_lo, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, g, g, v_lo, v_lo, 1, t, HT_PITCH_EARTH_FRAME)},
         {"all gains 64, schedule, v_ref = v_min = 327.67 m/s",
-         gains3(g, g, g, v_hi, v_hi, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, g, g, v_hi, v_hi, 1, t, HT_PITCH_EARTH_FRAME)},
         {"kp 64, kff 8, kd 8, schedule, scale 32, max_tilt 1 LSB",
-         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, 1, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, 1, HT_PITCH_EARTH_FRAME)},
     };
     const int n = (int)(sizeof corners / sizeof corners[0]);
     int failed = 0;
@@ -403,14 +387,14 @@ static void test_sweep_corners_any_row(void)
         ht_params_t p;
     } corners[] = {
         {"any row: kp 64, kff 8, kd 8, schedule, scale 32",
-         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_EARTH_FRAME)},
         {"any row: kp 64, kff 1, kd 15, schedule, scale 32, tilt cross",
-         gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
+         ts_gains3(g, Q16_ONE, 15 * Q16_ONE, v_hi, v_min_32, 1, t, HT_PITCH_TILT_CROSS)},
         {"any row: kp 64, kff 8, kd 8, schedule, scale 32, smallest v_min, tilt cross",
-         gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
-                HT_PITCH_TILT_CROSS)},
+         ts_gains3(g, 8 * Q16_ONE, 8 * Q16_ONE, ht_v_ref_max_for(v_lo), v_lo, 1, t,
+                   HT_PITCH_TILT_CROSS)},
         {"any row: kp 64, kff 14, kd 64, no schedule, scale 32",
-         gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
+         ts_gains3(g, 14 * Q16_ONE, g, v_hi, v_min_32, 0, t, HT_PITCH_EARTH_FRAME)},
     };
     const int n = (int)(sizeof corners / sizeof corners[0]);
     int failed = 0;
