@@ -146,7 +146,7 @@ matek_report() {
         --indirect scan_slot=stm32_param_flash_read --indirect slot_blank=stm32_param_flash_read)
     local isrs=(SysTick_Handler EXTI4_IRQHandler USART3_IRQHandler) syms h
     syms=$(arm-none-eabi-nm "$elf")
-    for h in USART2_IRQHandler USART6_IRQHandler TIM5_IRQHandler; do # the receiver's
+    for h in USART2_IRQHandler USART6_IRQHandler TIM5_IRQHandler UART4_IRQHandler; do # the receiver's, the MAVLink link's
         if echo "$syms" | grep -q " T $h\$"; then
             isrs+=("$h")
         fi
