@@ -29,21 +29,21 @@ static void command_ack(fw_link_t *l, const mavlink_message_t *msg, uint16_t com
 }
 
 /* custom_mode of each ht_mode_t, in its order */
-static const uint32_t custom_of_mode[HT_MODE_COUNT] = {
-    (uint32_t)FW_LINK_CUSTOM_MANUAL, (uint32_t)FW_LINK_CUSTOM_FBW,
-    (uint32_t)FW_LINK_CUSTOM_WAYPOINT, (uint32_t)FW_LINK_CUSTOM_RTH};
+static const fw_link_custom_mode_t custom_of_mode[HT_MODE_COUNT] = {
+    FW_LINK_CUSTOM_MANUAL, FW_LINK_CUSTOM_FBW, FW_LINK_CUSTOM_WAYPOINT, FW_LINK_CUSTOM_RTH};
 
 uint32_t fw_link_custom_mode(uint8_t ht_mode)
 {
-    return (ht_mode < (uint8_t)HT_MODE_COUNT) ? custom_of_mode[ht_mode]
+    return (ht_mode < (uint8_t)HT_MODE_COUNT) ? (uint32_t)custom_of_mode[ht_mode]
                                               : (uint32_t)FW_LINK_CUSTOM_MANUAL;
 }
 
+// cppcheck-suppress misra-c2012-8.7 ; D-8.7: the link's API (test_fw_link, ground-station tools)
 int32_t fw_link_mode_of_custom(uint32_t custom_mode)
 {
     int32_t mode = -1;
     for (uint8_t m = 0u; m < (uint8_t)HT_MODE_COUNT; ++m) {
-        if (custom_of_mode[m] == custom_mode) {
+        if ((uint32_t)custom_of_mode[m] == custom_mode) {
             mode = (int32_t)m;
         }
     }

@@ -485,6 +485,11 @@ void ht_modes_step(const ht_modes_t *m, ht_modes_state_t *st, const ht_modes_inp
         li.gyro_rad_s[i] = in->gyro_rad_s[i];
     }
     li.inverted = inverted;
+    /* the law's option inputs are the firmware step's (it knows the IMU and
+     * the command's history): zero here, so a caller of the modes alone
+     * flies every option's input at "none" */
+    li.turn_accel_rad_s2 = 0;
+    li.accel_lat_g = 0;
     st->law_inverted = inverted;
     o.law_in = li;
     *out = o;
