@@ -245,7 +245,7 @@ static void params_report(void)
         matek_console_put_u32(r->sequence);
     } else if (r->result == (uint8_t)MATEK_PARAMS_REFUSED) {
         matek_console_puts(", row ");
-        matek_console_puts((r->bad_id[0] != '\0') ? r->bad_id : "?");
+        matek_console_puts((r->bad_index >= 0) ? r->bad_id : "?");
         matek_console_puts(" (check ");
         matek_console_put_u32(r->bad);
         matek_console_puts(", block ");

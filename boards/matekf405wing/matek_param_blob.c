@@ -94,34 +94,55 @@ static int32_t index_of(const ht_param_info_t *info)
     return -1;
 }
 
+/* The table row of the modes' refusal (theirs, or a sub-module's). */
+static const ht_param_info_t *modes_row(const ht_modes_bad_t *bad)
+{
+    const ht_param_info_t *row;
+    switch (bad->field) {
+    case HT_MODES_P_FBW:
+        row = ht_fbw_param_info((ht_fbw_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_NAV:
+        row = ht_nav_param_info((ht_nav_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_AOA:
+        row = ht_aoa_param_info((ht_aoa_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_ALT_HOLD:
+        row = ht_alt_hold_param_info((ht_alt_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_SPEED_HOLD:
+        row = ht_speed_hold_param_info((ht_speed_param_id_t)bad->sub);
+        break;
+    default:
+        row = ht_modes_param_info(bad->field);
+        break;
+    }
+    return row;
+}
+
 /* The table row fw_init's refusal names, or NULL (a block without rows). */
 static const ht_param_info_t *refused_row(const fw_t *fw)
 {
+    const ht_param_info_t *row;
     switch ((fw_bad_block_t)fw->bad) {
     case FW_BAD_DCM:
-        return ht_dcm_param_info((ht_dcm_param_id_t)fw->bad_sub);
+        row = ht_dcm_param_info((ht_dcm_param_id_t)fw->bad_sub);
+        break;
     case FW_BAD_LAW:
-        return ht_param_info((ht_param_id_t)fw->bad_sub);
+        row = ht_param_info((ht_param_id_t)fw->bad_sub);
+        break;
     case FW_BAD_GUIDE:
-        return ht_guide_param_info((ht_guide_param_id_t)fw->bad_sub);
+        row = ht_guide_param_info((ht_guide_param_id_t)fw->bad_sub);
+        break;
     case FW_BAD_MODES:
-        switch (fw->modes_bad.field) {
-        case HT_MODES_P_FBW:
-            return ht_fbw_param_info((ht_fbw_param_id_t)fw->modes_bad.sub);
-        case HT_MODES_P_NAV:
-            return ht_nav_param_info((ht_nav_param_id_t)fw->modes_bad.sub);
-        case HT_MODES_P_AOA:
-            return ht_aoa_param_info((ht_aoa_param_id_t)fw->modes_bad.sub);
-        case HT_MODES_P_ALT_HOLD:
-            return ht_alt_hold_param_info((ht_alt_param_id_t)fw->modes_bad.sub);
-        case HT_MODES_P_SPEED_HOLD:
-            return ht_speed_hold_param_info((ht_speed_param_id_t)fw->modes_bad.sub);
-        default:
-            return ht_modes_param_info(fw->modes_bad.field);
-        }
+        row = modes_row(&fw->modes_bad);
+        break;
     default:
-        return NULL;
+        row = NULL;
+        break;
     }
+    return row;
 }
 
 static void refuse(matek_params_report_t *rep, matek_params_bad_t why, int32_t index)
@@ -139,13 +160,13 @@ static void refuse(matek_params_report_t *rep, matek_params_bad_t why, int32_t i
 static uint8_t blob[MATEK_PARAM_BLOB_MAX_BYTES];
 static fw_config_t put_cfg;
 static fw_link_params_t put_link;
-static fw_t check_fw;
 
 /* Put every row of blob into put_cfg / put_link (copies of cfg /
  * link_params); run the checks. 1 = accepted; 0 = rep says why. */
 static int put_and_check(const fw_config_t *cfg, const fw_link_params_t *link_params,
                          matek_params_report_t *rep)
 {
+    static fw_t check_fw; /* fw_init's scratch: the checks are fw_init's own */
     const uint16_t count = fw_link_param_count();
     put_cfg = *cfg;
     put_link = *link_params;
