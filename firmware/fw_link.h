@@ -208,6 +208,19 @@ int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw,
  * configuration and the running controllers (the estimator and the flight
  * state are kept). 0 = applied; else nothing changed. */
 int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw);
+/* The same rows in a configuration that is not flown (a board's stored set,
+ * before fw_init): a row's value and table row from cfg (link_params for
+ * the LINK group); raw may be NULL (cfg and link_params then may be too).
+ * 0, or -1 for an index out of range or a NULL struct. */
+int fw_link_param_get_cfg(const fw_config_t *cfg, const fw_link_params_t *link_params,
+                          uint16_t index, int32_t *raw, const ht_param_info_t **row);
+/* Put raw (stored format) into row index of cfg / link_params, checked
+ * against the row's own range only: no joint check, no re-initialisation
+ * (the caller runs the blocks' checks once every row is put, e.g. fw_init
+ * and ht_link_first_bad). 0 = put; 1 = outside the row's range (nothing
+ * changed); -1 = index out of range or a NULL struct. */
+int fw_link_param_put_cfg(fw_config_t *cfg, fw_link_params_t *link_params, uint16_t index,
+                          int32_t raw);
 
 /* --- IEEE-754 binary32 bit patterns without float (fw_link_f32.c) -------- */
 

@@ -201,19 +201,16 @@ int32_t fw_link_param_find(const char *id)
 }
 
 /* the row's field, through its bytes (character pointers: any object) */
-static const uint8_t *field_ro(const fw_link_t *l, uint16_t index)
+static const uint8_t *field_ro(const fw_config_t *cfg, const fw_link_params_t *lp, group_t g,
+                               uint16_t index)
 {
-    int gid = 0;
-    const uint8_t *const base =
-        (group_of(index, &gid) == G_LINK) ? (const uint8_t *)&l->params : (const uint8_t *)l->cfg;
+    const uint8_t *const base = (g == G_LINK) ? (const uint8_t *)lp : (const uint8_t *)cfg;
     return &base[rows[index].offset];
 }
 
-static uint8_t *field_rw(fw_link_t *l, uint16_t index)
+static uint8_t *field_rw(fw_config_t *cfg, fw_link_params_t *lp, group_t g, uint16_t index)
 {
-    int gid = 0;
-    uint8_t *const base =
-        (group_of(index, &gid) == G_LINK) ? (uint8_t *)&l->params : (uint8_t *)l->cfg;
+    uint8_t *const base = (g == G_LINK) ? (uint8_t *)lp : (uint8_t *)cfg;
     return &base[rows[index].offset];
 }
 
@@ -275,19 +272,47 @@ static void store(uint8_t *p, uint8_t kind, int32_t raw)
     }
 }
 
-int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw, const ht_param_info_t **row)
+int fw_link_param_get_cfg(const fw_config_t *cfg, const fw_link_params_t *link_params,
+                          uint16_t index, int32_t *raw, const ht_param_info_t **row)
 {
     int gid = 0;
     const group_t g = group_of(index, &gid);
-    if ((l == NULL) || (l->cfg == NULL) || (g == G_COUNT)) {
+    if (g == G_COUNT) {
         return -1;
     }
     if (raw != NULL) {
-        *raw = load(field_ro(l, index), rows[index].kind);
+        if ((cfg == NULL) || (link_params == NULL)) {
+            return -1;
+        }
+        *raw = load(field_ro(cfg, link_params, g, index), rows[index].kind);
     }
     if (row != NULL) {
         *row = row_info(g, gid);
     }
+    return 0;
+}
+
+int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw, const ht_param_info_t **row)
+{
+    if ((l == NULL) || (l->cfg == NULL)) {
+        return -1;
+    }
+    return fw_link_param_get_cfg(l->cfg, &l->params, index, raw, row);
+}
+
+int fw_link_param_put_cfg(fw_config_t *cfg, fw_link_params_t *link_params, uint16_t index,
+                          int32_t raw)
+{
+    int gid = 0;
+    const group_t g = group_of(index, &gid);
+    if ((cfg == NULL) || (link_params == NULL) || (g == G_COUNT)) {
+        return -1;
+    }
+    const ht_param_info_t *info = row_info(g, gid);
+    if ((info == NULL) || (raw < info->min_raw) || (raw > info->max_raw)) {
+        return 1;
+    }
+    store(field_rw(cfg, link_params, g, index), rows[index].kind, raw);
     return 0;
 }
 
@@ -350,7 +375,7 @@ int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw)
     if ((info == NULL) || (raw < info->min_raw) || (raw > info->max_raw)) {
         return 1;
     }
-    uint8_t *p = field_rw(l, index);
+    uint8_t *p = field_rw(l->cfg, &l->params, g, index);
     const int32_t old = load(p, rows[index].kind);
     store(p, rows[index].kind, raw);
     if (reinit_group(l, g) != 0) {

@@ -233,7 +233,7 @@ static void params_report(void)
     static const char *const what[6] = {"stored set loaded",
                                         "store blank: defaults",
                                         "store corrupt: defaults",
-                                        "stored set of another schema: defaults",
+                                        "stored set of another schema or table: defaults",
                                         "stored set refused: defaults",
                                         "stored set loaded (other slot corrupt)"};
     const matek_params_report_t *r = matek_params_report();
@@ -244,8 +244,15 @@ static void params_report(void)
         matek_console_puts(", sequence ");
         matek_console_put_u32(r->sequence);
     } else if (r->result == (uint8_t)MATEK_PARAMS_REFUSED) {
+        matek_console_puts(", row ");
+        matek_console_puts((r->bad_index >= 0) ? r->bad_id : "?");
+        matek_console_puts(" (check ");
+        matek_console_put_u32(r->bad);
+        matek_console_puts(", block ");
+        matek_console_put_u32(r->bad_block);
         matek_console_puts(", field ");
-        matek_console_put_i32(r->bad_field);
+        matek_console_put_i32(r->bad_sub);
+        matek_console_puts(")");
     } else {
         /* nothing more to say */
     }

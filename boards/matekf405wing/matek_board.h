@@ -86,8 +86,11 @@ void matek_rc_poll(void);
 
 /* --- matek_params_boot.c -------------------------------------------------- */
 const matek_params_report_t *matek_params_report(void);
-/* fw_link_save_fn: the law's and the estimator's parameters into the store
- * (a flash sector erase: the loop stalls). 0 = saved. */
+/* The link's stored parameters when the boot load accepted a set, else NULL
+ * (fw_board_link_init puts them into the link). */
+const fw_link_params_t *matek_params_link(void);
+/* fw_link_save_fn: every row the link exposes into the store (a flash sector
+ * erase: the loop stalls). 0 = saved. */
 int matek_params_save(void *ctx, const fw_config_t *cfg, const fw_link_params_t *link);
 
 #endif /* HT_MATEK_BOARD_H */

@@ -12,8 +12,9 @@
  * when the ring is empty. (QEMU's USART model raises no TXE interrupt: under
  * QEMU the link receives but does not send.)
  *
- * MAV_CMD_PREFLIGHT_STORAGE (param1 = 1) saves the law's and the
- * estimator's parameters in the parameter store (matek_params_save): a
+ * MAV_CMD_PREFLIGHT_STORAGE (param1 = 1) saves every row the link exposes
+ * (all of params.def, LINK included) in the parameter store
+ * (matek_params_save; the boot load gives the LINK rows back here): a
  * flash sector erase that stalls the loop for up to half a second - on the
  * ground only (docs/mavlink.md).
  */
@@ -69,6 +70,10 @@ int fw_board_link_init(fw_link_t *link)
     matek_pin_af(0u, MATEK_UART4_RX_PIN, MATEK_AF_UART4, 0u);
     stm32_usart_enable_rx_irq(&link_usart);
     matek_nvic_enable(STM32_UART4_IRQN);
+    const fw_link_params_t *stored = matek_params_link();
+    if (stored != NULL) {
+        link->params = *stored; /* the stored set's LINK rows (fw_link_init set the defaults) */
+    }
     link->save = matek_params_save;
     link->save_ctx = NULL;
     matek_console_puts("mavlink: MAVLink 2 on UART4 (TX4 PA0, RX4 PA1), 57600 8N1\r\n");

@@ -1,110 +1,76 @@
 /*
- * matek_param_blob.c - the parameter blob's field table, its encoding and
- * the boot-time load (see matek_param_blob.h for the layout).
+ * matek_param_blob.c - the parameter blob from the link's table, its
+ * fingerprint and the boot-time load (see matek_param_blob.h for the layout).
  */
 #include "matek_param_blob.h"
 
 #include <stddef.h>
 #include <string.h>
 
-#include "helical/dcm.h"
-#include "helical/helical_turn.h"
+#include "crc32.h"
 
-typedef enum { BLOB_LAW = 0, BLOB_DCM = 1, BLOB_PAD = 2 } blob_struct_t;
-
-/* One parameter: which struct, where in it, how wide (1, 2 or 4 bytes). */
-typedef struct {
-    uint8_t in;
-    uint8_t size;
-    uint16_t offset;
-} blob_field_t;
-
-#define LAW(f)                                                                                     \
-    {                                                                                              \
-        (uint8_t) BLOB_LAW, (uint8_t)sizeof(((ht_params_t *)0)->f),                                \
-            (uint16_t)offsetof(ht_params_t, f)                                                     \
-    }
-#define DCM(f)                                                                                     \
-    {                                                                                              \
-        (uint8_t) BLOB_DCM, (uint8_t)sizeof(((ht_dcm_params_t *)0)->f),                            \
-            (uint16_t)offsetof(ht_dcm_params_t, f)                                                 \
-    }
-
-/* The blob, in order: one line per parameter. */
-static const blob_field_t fields[] = {
-    LAW(kp_aileron),     LAW(kp_elevator),         LAW(kp_rudder),
-    LAW(kff_aileron),    LAW(kff_elevator),        LAW(kff_rudder),
-    LAW(kd_aileron),     LAW(kd_elevator),         LAW(kd_rudder),
-    LAW(v_ref_cm_s),     LAW(v_min_cm_s),          LAW(max_tilt),
-    LAW(schedule),       LAW(pitch_mode),          DCM(imu_rate_hz),
-    DCM(kp_rollpitch),   DCM(ki_rollpitch),        DCM(kp_yaw),
-    DCM(ki_yaw),         DCM(gyro_bias_max_rad_s), DCM(gyro_limit_rad_s),
-    DCM(accel_limit_g),  DCM(accel_band_g),        DCM(gps_min_speed_cm_s),
-    DCM(gps_latency_ms), DCM(centripetal),         {(uint8_t)BLOB_PAD, 3u, 0u},
-};
-#define FIELD_COUNT (sizeof fields / sizeof fields[0])
-
-/* The field's bytes inside its struct (NULL for padding). */
-static uint8_t *field_ptr(const blob_field_t *f, ht_params_t *law, ht_dcm_params_t *dcm)
+static uint32_t rd32(const uint8_t *p)
 {
-    if (f->in == (uint8_t)BLOB_LAW) {
-        return (uint8_t *)law + f->offset;
-    }
-    if (f->in == (uint8_t)BLOB_DCM) {
-        return (uint8_t *)dcm + f->offset;
-    }
-    return NULL;
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
 
-void matek_param_blob_encode(const ht_params_t *law, const ht_dcm_params_t *dcm,
-                             uint8_t blob[MATEK_PARAM_BLOB_BYTES])
+static void wr32(uint8_t *p, uint32_t v)
 {
-    ht_params_t l = *law; /* field_ptr takes non-const structs */
-    ht_dcm_params_t d = *dcm;
-    uint32_t at = 0u;
-    for (size_t i = 0u; i < FIELD_COUNT; ++i) {
-        const uint8_t *p = field_ptr(&fields[i], &l, &d);
-        uint32_t v = 0u; /* padding: zeros */
-        if (p != NULL && fields[i].size == 4u) {
-            memcpy(&v, p, 4u);
-        } else if (p != NULL && fields[i].size == 2u) {
-            uint16_t h = 0u;
-            memcpy(&h, p, 2u);
-            v = h;
-        } else if (p != NULL) {
-            v = *p;
-        } else {
-            /* padding */
-        }
-        for (uint32_t b = 0u; b < fields[i].size; ++b) {
-            blob[at + b] = (uint8_t)((v >> (8u * b)) & 0xFFu); /* little-endian */
-        }
-        at += fields[i].size;
+    for (uint32_t b = 0u; b < 4u; ++b) {
+        p[b] = (uint8_t)((v >> (8u * b)) & 0xFFu);
     }
 }
 
-void matek_param_blob_decode(const uint8_t blob[MATEK_PARAM_BLOB_BYTES], ht_params_t *law,
-                             ht_dcm_params_t *dcm)
+static size_t text_len(const char *s, size_t max)
 {
-    uint32_t at = 0u;
-    for (size_t i = 0u; i < FIELD_COUNT; ++i) {
-        uint8_t *p = field_ptr(&fields[i], law, dcm);
-        uint32_t v = 0u;
-        for (uint32_t b = 0u; b < fields[i].size; ++b) {
-            v |= (uint32_t)blob[at + b] << (8u * b);
-        }
-        if (p != NULL) {
-            if (fields[i].size == 4u) {
-                memcpy(p, &v, 4u);
-            } else if (fields[i].size == 2u) {
-                const uint16_t h = (uint16_t)(v & 0xFFFFu);
-                memcpy(p, &h, 2u);
-            } else {
-                *p = (uint8_t)(v & 0xFFu);
-            }
-        }
-        at += fields[i].size;
+    size_t n = 0u;
+    while ((n < max) && (s[n] != '\0')) {
+        ++n;
     }
+    return n;
+}
+
+uint32_t matek_param_fingerprint(void)
+{
+    uint32_t crc = 0u;
+    const uint16_t count = fw_link_param_count();
+    for (uint16_t i = 0u; i < count; ++i) {
+        char id[17];
+        const ht_param_info_t *row = NULL;
+        (void)fw_link_param_id(i, id);
+        (void)fw_link_param_get_cfg(NULL, NULL, i, NULL, &row);
+        crc = crc32_iso_hdlc(crc, (const uint8_t *)id, text_len(id, 16u) + 1u);
+        const char *fmt = ((row != NULL) && (row->format != NULL)) ? row->format : "";
+        crc = crc32_iso_hdlc(crc, (const uint8_t *)fmt, text_len(fmt, 32u) + 1u);
+    }
+    return crc;
+}
+
+uint32_t matek_param_blob_bytes(void)
+{
+    return MATEK_PARAM_HEAD_BYTES + (4u * (uint32_t)fw_link_param_count());
+}
+
+int matek_param_blob_encode(const fw_config_t *cfg, const fw_link_params_t *link_params,
+                            uint8_t blob[MATEK_PARAM_BLOB_MAX_BYTES])
+{
+    const uint16_t count = fw_link_param_count();
+    if ((cfg == NULL) || (link_params == NULL) || (blob == NULL) ||
+        ((uint32_t)count > MATEK_PARAM_MAX_ROWS)) {
+        return -1;
+    }
+    (void)memset(blob, 0, MATEK_PARAM_BLOB_MAX_BYTES);
+    blob[0] = (uint8_t)(count & 0xFFu);
+    blob[1] = (uint8_t)(count >> 8);
+    wr32(&blob[4], matek_param_fingerprint());
+    for (uint16_t i = 0u; i < count; ++i) {
+        int32_t raw = 0;
+        if (fw_link_param_get_cfg(cfg, link_params, i, &raw, NULL) != 0) {
+            return -1;
+        }
+        wr32(&blob[MATEK_PARAM_HEAD_BYTES + (4u * (uint32_t)i)], (uint32_t)raw);
+    }
+    return 0;
 }
 
 void matek_param_store(const param_flash_t *flash, param_store_t *out)
@@ -112,22 +78,144 @@ void matek_param_store(const param_flash_t *flash, param_store_t *out)
     out->flash = flash;
     out->schema_id = (uint16_t)MATEK_PARAM_SCHEMA_ID;
     out->schema_version = (uint16_t)MATEK_PARAM_SCHEMA_VERSION;
-    out->length = MATEK_PARAM_BLOB_BYTES;
+    out->length = matek_param_blob_bytes();
 }
 
-/* Scratch for the checks (file-static: this is the image, not the library). */
-static ht_controller_t check_law;
-static ht_dcm_t check_dcm;
-
-void matek_params_load(const param_flash_t *flash, fw_config_t *cfg, matek_params_report_t *rep)
+/* The link row whose table row is info, or -1. */
+static int32_t index_of(const ht_param_info_t *info)
 {
-    static uint8_t blob[MATEK_PARAM_BLOB_BYTES];
+    const uint16_t count = fw_link_param_count();
+    for (uint16_t i = 0u; (info != NULL) && (i < count); ++i) {
+        const ht_param_info_t *row = NULL;
+        if ((fw_link_param_get_cfg(NULL, NULL, i, NULL, &row) == 0) && (row == info)) {
+            return (int32_t)i;
+        }
+    }
+    return -1;
+}
+
+/* The table row of the modes' refusal (theirs, or a sub-module's). */
+static const ht_param_info_t *modes_row(const ht_modes_bad_t *bad)
+{
+    const ht_param_info_t *row;
+    switch (bad->field) {
+    case HT_MODES_P_FBW:
+        row = ht_fbw_param_info((ht_fbw_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_NAV:
+        row = ht_nav_param_info((ht_nav_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_AOA:
+        row = ht_aoa_param_info((ht_aoa_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_ALT_HOLD:
+        row = ht_alt_hold_param_info((ht_alt_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_SPEED_HOLD:
+        row = ht_speed_hold_param_info((ht_speed_param_id_t)bad->sub);
+        break;
+    default:
+        row = ht_modes_param_info(bad->field);
+        break;
+    }
+    return row;
+}
+
+/* The table row fw_init's refusal names, or NULL (a block without rows). */
+static const ht_param_info_t *refused_row(const fw_t *fw)
+{
+    const ht_param_info_t *row;
+    switch ((fw_bad_block_t)fw->bad) {
+    case FW_BAD_DCM:
+        row = ht_dcm_param_info((ht_dcm_param_id_t)fw->bad_sub);
+        break;
+    case FW_BAD_LAW:
+        row = ht_param_info((ht_param_id_t)fw->bad_sub);
+        break;
+    case FW_BAD_GUIDE:
+        row = ht_guide_param_info((ht_guide_param_id_t)fw->bad_sub);
+        break;
+    case FW_BAD_MODES:
+        row = modes_row(&fw->modes_bad);
+        break;
+    default:
+        row = NULL;
+        break;
+    }
+    return row;
+}
+
+static void refuse(matek_params_report_t *rep, matek_params_bad_t why, int32_t index)
+{
+    rep->result = (uint8_t)MATEK_PARAMS_REFUSED;
+    rep->bad = (uint8_t)why;
+    rep->bad_index = (index < 0) ? -1 : index;
+    if ((index < 0) || (fw_link_param_id((uint16_t)index, rep->bad_id) != 0)) {
+        rep->bad_id[0] = '\0';
+    }
+}
+
+/* Scratch for the load and its checks (file-static: this is the image, not
+ * the library; used once, at boot, before the firmware's own fw_init). */
+static uint8_t blob[MATEK_PARAM_BLOB_MAX_BYTES];
+static fw_config_t put_cfg;
+static fw_link_params_t put_link;
+
+/* Put every row of blob into put_cfg / put_link (copies of cfg /
+ * link_params); run the checks. 1 = accepted; 0 = rep says why. */
+static int put_and_check(const fw_config_t *cfg, const fw_link_params_t *link_params,
+                         matek_params_report_t *rep)
+{
+    static fw_t check_fw; /* fw_init's scratch: the checks are fw_init's own */
+    const uint16_t count = fw_link_param_count();
+    put_cfg = *cfg;
+    put_link = *link_params;
+    int32_t rate_row = -1;
+    for (uint16_t i = 0u; i < count; ++i) {
+        const int32_t raw = (int32_t)rd32(&blob[MATEK_PARAM_HEAD_BYTES + (4u * (uint32_t)i)]);
+        if (fw_link_param_put_cfg(&put_cfg, &put_link, i, raw) != 0) {
+            refuse(rep, MATEK_BAD_RANGE, (int32_t)i);
+            return 0;
+        }
+        if ((rate_row < 0) && (put_cfg.dcm.imu_rate_hz != cfg->dcm.imu_rate_hz)) {
+            rate_row = (int32_t)i;
+        }
+    }
+    if (rate_row >= 0) {
+        /* the board's tick, the decimation and the control divider are
+         * built for this rate */
+        refuse(rep, MATEK_BAD_IMU_RATE, rate_row);
+        return 0;
+    }
+    if (fw_init(&check_fw, &put_cfg) == 0) {
+        rep->bad_block = check_fw.bad;
+        rep->bad_sub = ((fw_bad_block_t)check_fw.bad == FW_BAD_MODES)
+                           ? (int32_t)check_fw.modes_bad.sub
+                           : check_fw.bad_sub;
+        refuse(rep, MATEK_BAD_INIT, index_of(refused_row(&check_fw)));
+        return 0;
+    }
+    const ht_link_param_id_t bad_link = ht_link_first_bad(&put_link);
+    if (bad_link != HT_LINK_P_NONE) {
+        rep->bad_sub = (int32_t)bad_link;
+        refuse(rep, MATEK_BAD_LINK, index_of(ht_link_param_info(bad_link)));
+        return 0;
+    }
+    return 1;
+}
+
+void matek_params_load(const param_flash_t *flash, fw_config_t *cfg, fw_link_params_t *link_params,
+                       matek_params_report_t *rep)
+{
     param_store_t store;
     param_store_load_t info;
+    (void)memset(rep, 0, sizeof *rep);
     rep->result = (uint8_t)MATEK_PARAMS_CORRUPT;
-    rep->slot = 0u;
-    rep->sequence = 0u;
-    rep->bad_field = 0;
+    rep->bad_index = -1;
+    if ((uint32_t)fw_link_param_count() > MATEK_PARAM_MAX_ROWS) {
+        rep->result = (uint8_t)MATEK_PARAMS_MISMATCH; /* this image cannot hold its table */
+        return;
+    }
     matek_param_store(flash, &store);
     const param_store_status_t st = param_store_load(&store, blob, &info);
     if (info.loaded == 0u) {
@@ -140,30 +228,17 @@ void matek_params_load(const param_flash_t *flash, fw_config_t *cfg, matek_param
         }
         return;
     }
-    ht_params_t law = cfg->law;
-    ht_dcm_params_t dcm = cfg->dcm;
-    matek_param_blob_decode(blob, &law, &dcm);
-    ht_param_id_t bad_law = HT_P_NONE;
-    ht_dcm_param_id_t bad_dcm = (ht_dcm_param_id_t)0;
-    if (ht_init(&check_law, &law, &bad_law) != HT_OK) {
-        rep->result = (uint8_t)MATEK_PARAMS_REFUSED;
-        rep->bad_field = (int32_t)bad_law;
+    const uint32_t stored_count = (uint32_t)blob[0] | ((uint32_t)blob[1] << 8);
+    if ((stored_count != (uint32_t)fw_link_param_count()) || (blob[2] != 0u) || (blob[3] != 0u) ||
+        (rd32(&blob[4]) != matek_param_fingerprint())) {
+        rep->result = (uint8_t)MATEK_PARAMS_MISMATCH; /* another table's rows */
         return;
     }
-    if (ht_dcm_init(&check_dcm, &dcm, &bad_dcm) != 0) {
-        rep->result = (uint8_t)MATEK_PARAMS_REFUSED;
-        rep->bad_field = 1000 + (int32_t)bad_dcm;
+    if (put_and_check(cfg, link_params, rep) == 0) {
         return;
     }
-    if (dcm.imu_rate_hz != cfg->dcm.imu_rate_hz) {
-        /* the board's tick, the decimation and the control divider are
-         * built for this rate */
-        rep->result = (uint8_t)MATEK_PARAMS_REFUSED;
-        rep->bad_field = 2000;
-        return;
-    }
-    cfg->law = law;
-    cfg->dcm = dcm;
+    *cfg = put_cfg;
+    *link_params = put_link;
     rep->result =
         (uint8_t)((st == PARAM_STORE_OK) ? MATEK_PARAMS_LOADED : MATEK_PARAMS_LOADED_OTHER_CORRUPT);
     rep->slot = info.slot;

@@ -1,44 +1,55 @@
 /*
  * matek_param_blob.h - the stored parameter set of the Matek F405-WING
- * image: the law's (ht_params_t) and the estimator's (ht_dcm_params_t)
- * parameters as one versioned blob for the parameter store
- * (boards/common/param_store.h), and the boot-time load that puts them into
- * the firmware configuration.
+ * image: every row the MAVLink link exposes (firmware/fw_link.h: every row
+ * of every group of include/helical/params.def, LINK included) as one
+ * versioned blob for the parameter store (boards/common/param_store.h), and
+ * the boot-time load that puts it into the firmware configuration and the
+ * link's parameters.
  *
- * The blob is a list of fields, each little-endian at a fixed offset, in the
- * order of the table in matek_param_blob.c: one line per parameter, so that
- * the table can later be generated from the project's single parameter
- * table. A change of the list is a new MATEK_PARAM_SCHEMA_VERSION (the store
- * then reports SCHEMA_MISMATCH and the image boots on its defaults).
+ * The blob is generated from the one table, not from a hand list: for each
+ * link index i in [0, fw_link_param_count()), the row's stored value
+ * (fw_link_param_get_cfg) as a little-endian int32. A fingerprint of the
+ * table's layout (the row count and a CRC-32 over every row's param_id and
+ * format name) heads it, so that an image with another table (a row added,
+ * removed, moved, renamed or re-formatted) reads a stored set as MISMATCH
+ * and boots on its defaults rather than putting values into the wrong rows.
  *
- * Layout (bytes), schema 0x4D57 ("WM"), version 1, 92 bytes:
- *     0 law.kp_aileron .. 32 law.kd_rudder   9 x q16 (int32)
- *    36 law.v_ref_cm_s   40 law.v_min_cm_s    int32
- *    44 law.max_tilt (q16)   48 law.schedule (u8)   49 law.pitch_mode (u8)
- *    50 dcm.imu_rate_hz (u16)
- *    52 dcm.kp_rollpitch, ki_rollpitch, kp_yaw, ki_yaw, gyro_bias_max_rad_s,
- *       gyro_limit_rad_s, accel_limit_g, accel_band_g   8 x q16
- *    84 dcm.gps_min_speed_cm_s (int16)   86 dcm.gps_latency_ms (u16)
- *    88 dcm.centripetal (u8)   89..91 zero (padding to a word)
+ * Layout (bytes), schema 0x4D57 ("WM"), version 2, 8 + 4 * rows bytes:
+ *     0 u16 row count     2 u16 zero
+ *     4 u32 fingerprint (matek_param_fingerprint)
+ *     8 int32 row 0 .. 8 + 4 * (count - 1) int32 row count - 1
+ * Schema 1 (the law's first 14 rows and the estimator's, 92 bytes) is no
+ * longer decoded: a schema-1 record reads as MISMATCH (defaults fly) until
+ * the next MAV_CMD_PREFLIGHT_STORAGE writes a schema-2 one.
  */
 #ifndef HT_MATEK_PARAM_BLOB_H
 #define HT_MATEK_PARAM_BLOB_H
 
 #include <stdint.h>
 
+#include "fw_link.h"
 #include "fw_step.h"
 #include "param_store.h"
 
 #define MATEK_PARAM_SCHEMA_ID      0x4D57u
-#define MATEK_PARAM_SCHEMA_VERSION 1u
-#define MATEK_PARAM_BLOB_BYTES     92u
+#define MATEK_PARAM_SCHEMA_VERSION 2u
+#define MATEK_PARAM_HEAD_BYTES     8u
+/* Rows the blob has room for (the table has 97); a table over this is not
+ * stored (save fails, load reads MISMATCH). */
+#define MATEK_PARAM_MAX_ROWS       128u
+#define MATEK_PARAM_BLOB_MAX_BYTES (MATEK_PARAM_HEAD_BYTES + (4u * MATEK_PARAM_MAX_ROWS))
 
-/* The blob from the two structs (padding bytes 0). */
-void matek_param_blob_encode(const ht_params_t *law, const ht_dcm_params_t *dcm,
-                             uint8_t blob[MATEK_PARAM_BLOB_BYTES]);
-/* The two structs from the blob (fields not in the blob are left as they were). */
-void matek_param_blob_decode(const uint8_t blob[MATEK_PARAM_BLOB_BYTES], ht_params_t *law,
-                             ht_dcm_params_t *dcm);
+/* The table's fingerprint: CRC-32 over each row's param_id and format
+ * name, each with its terminating NUL, in index order. */
+uint32_t matek_param_fingerprint(void);
+/* This image's blob length (8 + 4 * fw_link_param_count()). */
+uint32_t matek_param_blob_bytes(void);
+
+/* The blob from a configuration and the link's parameters (the bytes past
+ * matek_param_blob_bytes() are 0). 0, or -1 (more rows than the blob holds,
+ * a NULL pointer). */
+int matek_param_blob_encode(const fw_config_t *cfg, const fw_link_params_t *link_params,
+                            uint8_t blob[MATEK_PARAM_BLOB_MAX_BYTES]);
 
 /* The store's description of this blob on a flash. */
 void matek_param_store(const param_flash_t *flash, param_store_t *out);
@@ -48,26 +59,44 @@ typedef enum {
     MATEK_PARAMS_LOADED = 0,              /* the stored set is flown */
     MATEK_PARAMS_BLANK = 1,               /* nothing stored: defaults */
     MATEK_PARAMS_CORRUPT = 2,             /* no valid record: defaults */
-    MATEK_PARAMS_MISMATCH = 3,            /* another schema or version stored: defaults */
-    MATEK_PARAMS_REFUSED = 4,             /* stored values fail the law's or estimator's checks, or
-                                             change the IMU rate this image is built for: defaults */
+    MATEK_PARAMS_MISMATCH = 3,            /* another schema, version or table stored: defaults */
+    MATEK_PARAMS_REFUSED = 4,             /* stored values fail a row's range, a block's checks,
+                                             or change the IMU rate this image is built for:
+                                             defaults */
     MATEK_PARAMS_LOADED_OTHER_CORRUPT = 5 /* loaded, but the other slot is corrupt */
 } matek_params_result_t;
+
+/* Why a stored set was refused. */
+typedef enum {
+    MATEK_BAD_NONE = 0,
+    MATEK_BAD_RANGE = 1,    /* bad_index: the row is outside its own range */
+    MATEK_BAD_IMU_RATE = 2, /* bad_index: the IMU rate row differs from this image's */
+    MATEK_BAD_INIT = 3,     /* fw_init refused: bad_block (fw_bad_block_t), bad_sub */
+    MATEK_BAD_LINK = 4      /* ht_link_first_bad: bad_sub (ht_link_param_id_t) */
+} matek_params_bad_t;
 
 typedef struct {
     uint8_t result;    /* matek_params_result_t */
     uint8_t slot;      /* when loaded */
     uint32_t sequence; /* when loaded */
-    int32_t bad_field; /* REFUSED: the ht_param_id_t (law) or 1000 + ht_dcm_param_id_t,
-                          or 2000 for the IMU rate */
+    uint8_t bad;       /* REFUSED: matek_params_bad_t */
+    uint8_t bad_block; /* MATEK_BAD_INIT: fw_bad_block_t */
+    int32_t bad_sub;   /* MATEK_BAD_INIT: the block's field id (modes: ht_modes_bad_t.sub when
+                          the field is a sub-module's); MATEK_BAD_LINK: the link's id */
+    int32_t bad_index; /* REFUSED: the link row (0-based) the check names, or -1 */
+    char bad_id[17];   /* its param_id ("" when bad_index is -1) */
 } matek_params_report_t;
 
 /*
- * Load the store on flash and, when a valid record of this schema passes
- * ht_init and ht_dcm_init and keeps cfg->dcm.imu_rate_hz, replace cfg->law
- * and cfg->dcm with it. Otherwise cfg is untouched (the defaults fly) and
- * rep says why.
+ * Load the store on flash and, when a valid record of this schema and
+ * table puts every row in range (fw_link_param_put_cfg), passes fw_init's
+ * checks (estimator, both law controllers, rate divider, modes with their
+ * holds, fly-by-wire, waypoint guidance and AoA model, turn guidance) and
+ * ht_link_first_bad, and keeps cfg->dcm.imu_rate_hz, replace *cfg and
+ * *link_params with it. Otherwise both are untouched (the defaults fly)
+ * and rep says why.
  */
-void matek_params_load(const param_flash_t *flash, fw_config_t *cfg, matek_params_report_t *rep);
+void matek_params_load(const param_flash_t *flash, fw_config_t *cfg, fw_link_params_t *link_params,
+                       matek_params_report_t *rep);
 
 #endif /* HT_MATEK_PARAM_BLOB_H */

@@ -18,7 +18,9 @@
 static stm32_flash_t flash;
 static param_flash_t pflash;
 static uint8_t flash_ok;
-static matek_params_report_t report = {(uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0};
+static matek_params_report_t report = {(uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0u, 0u, 0, -1, ""};
+static fw_link_params_t stored_link; /* the link's rows of the stored set */
+static uint8_t link_loaded;
 
 void fw_board_config(fw_config_t *cfg)
 {
@@ -31,18 +33,26 @@ void fw_board_config(fw_config_t *cfg)
     }
     stm32_param_flash_bind(&flash, &pflash);
     flash_ok = 1u;
-    matek_params_load(&pflash, cfg, &report);
+    ht_link_params_default(&stored_link);
+    matek_params_load(&pflash, cfg, &stored_link, &report);
+    link_loaded = ((report.result == (uint8_t)MATEK_PARAMS_LOADED) ||
+                   (report.result == (uint8_t)MATEK_PARAMS_LOADED_OTHER_CORRUPT))
+                      ? 1u
+                      : 0u;
+}
+
+const fw_link_params_t *matek_params_link(void)
+{
+    return (link_loaded != 0u) ? &stored_link : NULL;
 }
 
 int matek_params_save(void *ctx, const fw_config_t *cfg, const fw_link_params_t *link)
 {
-    static uint8_t blob[MATEK_PARAM_BLOB_BYTES];
+    static uint8_t blob[MATEK_PARAM_BLOB_MAX_BYTES];
     (void)ctx;
-    (void)link; /* the link's rows are not in the blob (schema 1): their defaults fly */
-    if ((flash_ok == 0u) || (cfg == NULL)) {
+    if ((flash_ok == 0u) || (matek_param_blob_encode(cfg, link, blob) != 0)) {
         return -1;
     }
-    matek_param_blob_encode(&cfg->law, &cfg->dcm, blob);
     param_store_t store;
     matek_param_store(&pflash, &store);
     uint8_t slot = 0u;
