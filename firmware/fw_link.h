@@ -31,8 +31,15 @@
 #include "fw_step.h"
 #include "helical/params.h"
 
-/* the generated headers (a SYSTEM include directory of the build tree) */
-#include "mavlink/common/mavlink.h"
+/* the generated headers (a SYSTEM include directory of the build tree):
+ * here only their types (the link's frame buffers and parser states); the
+ * messages are the link's own files' (fw_link_internal.h), so that a user
+ * of the link does not parse the ~230 message headers of common.xml */
+#include "mavlink/mavlink_types.h"
+
+/* The autopilot's component id, MAV_COMP_ID_AUTOPILOT1 of common.xml (which
+ * this header does not include; test_fw_link checks that they agree). */
+#define FW_LINK_COMPID_AUTOPILOT 1u
 
 #ifdef __cplusplus
 extern "C" {

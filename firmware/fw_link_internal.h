@@ -10,6 +10,8 @@
 #include <string.h>
 
 #include "fw_link.h"
+/* every message of common.xml (the generated headers of mavgen) */
+#include "mavlink/common/mavlink.h"
 
 /* Queue one message: the generated struct pkt (wire layout on a
  * little-endian target, as the generated pack functions copy it), framed

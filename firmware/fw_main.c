@@ -80,7 +80,7 @@ int main(void)
     }
     (void)fw_init(&fw, &config); /* a refused config: no pulses, reported below */
     const uint8_t link_on =
-        ((fw_link_init(&link, &fw, &config, 0u, (uint8_t)MAV_COMP_ID_AUTOPILOT1) == 0) &&
+        ((fw_link_init(&link, &fw, &config, 0u, (uint8_t)FW_LINK_COMPID_AUTOPILOT) == 0) &&
          (fw_board_link_init(&link) != 0))
             ? 1u
             : 0u;

@@ -10,6 +10,7 @@
 #include "unity.h"
 
 #include "fw_link.h"
+#include "mavlink/common/mavlink.h" /* the messages, to build and read frames */
 
 #include <math.h>
 #include <string.h>
@@ -685,6 +686,7 @@ static void do_set_mode(uint32_t custom)
  * over every number up to 1000 and the uint32 ends */
 static void test_custom_mode_numbers(void)
 {
+    TEST_ASSERT_EQUAL_UINT(MAV_COMP_ID_AUTOPILOT1, FW_LINK_COMPID_AUTOPILOT);
     const uint32_t want[HT_MODE_COUNT] = {0u, 5u, 10u, 11u};
     for (uint8_t m = 0u; m < (uint8_t)HT_MODE_COUNT; ++m) {
         TEST_ASSERT_EQUAL_UINT32(want[m], fw_link_custom_mode(m));

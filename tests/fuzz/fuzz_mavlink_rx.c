@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "fw_link.h"
+#include "mavlink/common/mavlink.h" /* the messages, to build and read frames */
 
 static void check(int ok)
 {
