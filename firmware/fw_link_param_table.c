@@ -272,6 +272,7 @@ static void store(uint8_t *p, uint8_t kind, int32_t raw)
     }
 }
 
+// cppcheck-suppress misra-c2012-8.7 ; D-8.7: the link's API (the Matek parameter blob, its test)
 int fw_link_param_get_cfg(const fw_config_t *cfg, const fw_link_params_t *link_params,
                           uint16_t index, int32_t *raw, const ht_param_info_t **row)
 {
