@@ -11,7 +11,7 @@
 #ifndef HT_FW_BOARD_CONFIG_H
 #define HT_FW_BOARD_CONFIG_H
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "fw_step.h"
 
 void fw_board_config(fw_config_t *cfg);

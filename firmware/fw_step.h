@@ -7,7 +7,7 @@
  *   - the flight image (firmware/fw_main.c) with the board's sensors and
  *     receiver (include/helical/board.h);
  *   - the SIL host board (boards/sil) with sensors synthesized from JSBSim;
- *   - the HIL firmware (firmware/hil_fw.c) with the samples of the link.
+ *   - the HIL firmware (firmware/hil/hil_fw.c) with the samples of the link.
  * No host keeps a copy of any part of it (a ctest inspects the hosts' objects
  * for calls into the law, the modes, the holds or the output stage).
  *
@@ -44,14 +44,14 @@
 #include <stdint.h>
 
 #include "helical/board.h"
-#include "helical/dcm.h"
-#include "helical/guide.h"
-#include "helical/geo.h"
-#include "helical/helical_turn.h"
-#include "helical/holds.h"
-#include "helical/modes.h"
-#include "helical/output_stage.h"
-#include "helical/upset_guard.h"
+#include "helical/estimator/dcm.h"
+#include "helical/guidance/guide.h"
+#include "helical/math/geo.h"
+#include "helical/law/helical_turn.h"
+#include "helical/guidance/holds.h"
+#include "helical/guidance/modes.h"
+#include "helical/output/output_stage.h"
+#include "helical/law/upset_guard.h"
 
 #ifdef __cplusplus
 extern "C" {

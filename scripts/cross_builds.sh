@@ -57,10 +57,10 @@ law_image() { # prints map_usage.py's table of the law + output stage link
     local dir=build/stm32f4/law_image
     mkdir -p "$dir"
     cat >"$dir/law_image.c" <<'EOC'
-#include "helical/helical_turn.h"
-#include "helical/mixer.h"
-#include "helical/output_stage.h"
-#include "helical/q14.h"
+#include "helical/law/helical_turn.h"
+#include "helical/output/mixer.h"
+#include "helical/output/output_stage.h"
+#include "helical/math/q14.h"
 /* the roots the link keeps; everything else is collected by --gc-sections */
 void *const law_image_roots[] = {
     (void *)ht_init,            (void *)ht_step,         (void *)q_mul32,    (void *)q_sat16,
@@ -73,7 +73,7 @@ EOC
         -fdata-sections -Iinclude -nostartfiles --specs=nano.specs -Wl,--gc-sections \
         -Wl,-e,law_image_entry -Wl,--undefined=law_image_roots -Wl,-Map,"$dir/law_image.map" \
         "$dir/law_image.c" build/stm32f4/src/libhelical.a -o "$dir/law_image.elf"
-    python3 boards/common/map_usage.py "$dir/law_image.map"
+    python3 tools/image/map_usage.py "$dir/law_image.map"
 }
 
 echo
@@ -90,7 +90,7 @@ fi
 if [ "$have_python" = 1 ]; then
     echo
     echo "== library objects linked into the STM32F4 (Cortex-M4) flight image, after --gc-sections"
-    python3 boards/common/map_usage.py build/stm32f4/boards/stm32f4/ht_stm32f4.map || true
+    python3 tools/image/map_usage.py build/stm32f4/boards/stm32f4/ht_stm32f4.map || true
     echo
     echo "== law + output stage linked alone (build/stm32f4/law_image), after --gc-sections"
     usage=$(law_image || true)
@@ -99,7 +99,7 @@ if [ "$have_python" = 1 ]; then
     target "M4 library flash linked by the image (law + output stage) B" "${linked:-999999}" 4096
     echo
     echo "== control tick stack (worst path from fw_step, the board tick's one call; -fstack-usage frames)"
-    stack_out=$(python3 boards/common/stack_depth.py build/stm32f4 fw_step || true)
+    stack_out=$(python3 tools/image/stack_depth.py build/stm32f4 fw_step || true)
     echo "$stack_out"
     tick_stack=$(echo "$stack_out" | sed -n 's/^worst stack of fw_step: \([0-9]*\) bytes.*/\1/p')
     if [ -n "$tick_stack" ]; then
@@ -154,7 +154,7 @@ matek_report() {
     echo
     echo "== Matek F405-WING stack (worst paths; -fstack-usage frames)"
     local out
-    out=$(python3 boards/common/stack_depth.py "$dirs" main fw_step "${isrs[@]}" "${ind[@]}" || true)
+    out=$(python3 tools/image/stack_depth.py "$dirs" main fw_step "${isrs[@]}" "${ind[@]}" || true)
     echo "$out"
     local loop_stack isr_stack
     loop_stack=$(echo "$out" | sed -n 's/^worst stack of main: \([0-9]*\) bytes.*/\1/p')
@@ -209,7 +209,7 @@ matek_report
 
 echo
 echo "== M0 no-float check"
-boards/common/check_no_float.sh arm-none-eabi-nm build/cortex-m0/src/libhelical.a
+tools/image/check_no_float.sh arm-none-eabi-nm build/cortex-m0/src/libhelical.a
 
 if [ "$over" = 1 ]; then
     if [ "$strict" = 1 ]; then

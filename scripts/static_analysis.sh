@@ -8,7 +8,7 @@
 # Scope: src/, include/, the firmware in firmware/ and the board code in
 # boards/{common,stm32f4,dspic33,sil} (not their tests/). Compile databases for
 # clang-tidy: SA_TIDY_BUILD_DIR (the host build: the library, boards/sil,
-# firmware/fw_step.c and hil_fw.c (target ht_firmware) and the drivers'
+# firmware/fw_step.c and hil/hil_fw.c (target ht_firmware) and the drivers'
 # host-testable files) and SA_TIDY_CROSS_BUILD_DIR (the stm32f4 firmware
 # build: the cross-only files, fw_main.c and hil_main.c among them, run with --target=arm-none-eabi and
 # newlib's headers). SA_XC16_SOURCES (board_udb.c, XC16-only) are analysed on
@@ -17,11 +17,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 board_dirs="boards/common boards/stm32f4 boards/dspic33 boards/sil"
-SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c firmware/*.c boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
+SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c src/*/*.c $(find firmware -name "*.c" -not -path "*/tests/*" | sort) boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
     boards/dspic33/dspic33_oc_pwm.c boards/devices/*.c)"}
 SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
 SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}
-SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h src/*.h firmware/*.h boards/stm32f4/*.h \
+SA_HEADERS=${SA_HEADERS:-"$(echo include/helical/*.h include/helical/*/*.h src/*/*.h $(find firmware -name "*.h" -not -path "*/tests/*" | sort) boards/stm32f4/*.h \
     boards/dspic33/*.h boards/sil/*.h boards/devices/*.h)"}
 SA_INCLUDES=${SA_INCLUDES:-"include src firmware $board_dirs boards/devices"}
 SA_TIDY_BUILD_DIR=${SA_TIDY_BUILD_DIR:-build/host}

@@ -13,7 +13,7 @@
 #include <stdint.h>
 
 #include "bench_common.h"
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 __attribute__((naked, used, section(".text.bench_stop"))) void bench_stop(void)
 {

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 #include "law_q14.h"
 #include "law_real.h"
 
@@ -17,7 +17,7 @@
 #endif
 
 #if BENCH_HAVE_OS
-#include "helical/output_stage.h"
+#include "helical/output/output_stage.h"
 extern os_config_t bench_os_cfg;
 #endif
 

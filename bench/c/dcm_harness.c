@@ -19,7 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 #ifdef __arm__
 __attribute__((naked, used, section(".text.bench_stop"))) void bench_stop(void)

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 extern ht_dcm_state_t dcm_bench_s;
 int dcm_bench_setup(void);

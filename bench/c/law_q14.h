@@ -13,7 +13,7 @@
 
 #include <stdint.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 /* The parameters in the 16-bit law's formats, converted once (law_q14_init),
  * the way ht_init converts them for the library. Axis order as the library:

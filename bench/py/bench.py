@@ -269,7 +269,8 @@ class LibBuild:
 
 
 def lib_sources() -> list[Path]:
-    return sorted((ROOT / "src").glob("*.c"))
+    """Every library source: the parameter rows at src/ and each concern's folder."""
+    return sorted([*(ROOT / "src").glob("*.c"), *(ROOT / "src").glob("*/*.c")])
 
 
 def build_library(cc: str, flags: list[str], outdir: Path) -> LibBuild:
@@ -295,7 +296,8 @@ def build_library(cc: str, flags: list[str], outdir: Path) -> LibBuild:
         if name in failed:
             raise BenchError(f"library core file {name} does not build ({' '.join(flags)}): "
                              f"{failed[name]}")
-    have_os = all(n not in failed and (ROOT / "src" / n).exists() for n in OS_SOURCES)
+    names = {s.name for s in lib_sources()}
+    have_os = all(n not in failed and n in names for n in OS_SOURCES)
     return LibBuild(objs, core, have_os, failed, warnings)
 
 

@@ -35,8 +35,8 @@ CPI = {"M0": 1.3, "M4": 1.0}
 
 # the estimator's sources (src/): the ARM build checks they compiled, the
 # host build compiles them
-DCM_SOURCES = ("dcm.c", "dcm_gps_accel.c", "dcm_wind.c", "dcm_params.c", "dcm_trig.c", "q14.c",
-               "param_rows.c")
+DCM_SOURCES = ("estimator/dcm.c", "estimator/dcm_gps_accel.c", "estimator/dcm_wind.c",
+               "estimator/dcm_params.c", "estimator/dcm_trig.c", "math/q14.c", "param_rows.c")
 
 
 def build(core: B.Core, opt: str, outroot: Path) -> Path:
@@ -44,7 +44,7 @@ def build(core: B.Core, opt: str, outroot: Path) -> Path:
     outdir.mkdir(parents=True, exist_ok=True)
     flags = [*core.flags, f"-{opt}", "-ffunction-sections", "-fdata-sections", "-g"]
     lib = B.build_library(B.ARM_CC, flags, outdir / "lib")
-    need = set(DCM_SOURCES)
+    need = {Path(n).name for n in DCM_SOURCES}
     missing = need & set(lib.failed)
     if missing:
         raise B.BenchError(f"estimator sources do not build: {sorted(missing)}")

@@ -50,7 +50,7 @@
 #include <stdint.h>
 
 #include "helical/board.h"
-#include "helical/ubx.h"
+#include "helical/protocols/ubx.h"
 
 /* The u-blox M8's velocity limit is 500 m/s (its data sheet's operational
  * limits): a larger NAV-PVT velocity is garbage, clamped to this. */

@@ -20,7 +20,7 @@
 
 #include <stdint.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 #define IMU_DECIMATE_MAX 64u
 

@@ -47,8 +47,8 @@
 #include <stdint.h>
 
 #include "helical/board.h"
-#include "helical/rx_crsf.h"
-#include "helical/rx_sbus.h"
+#include "helical/protocols/rx_crsf.h"
+#include "helical/protocols/rx_sbus.h"
 
 #define RC_SERIAL_SBUS_GAP_US 1000u /* > 8 byte times, < a quarter of the 4 ms gap */
 /* No usable frame for this long: lost (5 frames at 50 Hz, the slowest CRSF

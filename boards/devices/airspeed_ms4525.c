@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 static void count(uint16_t *c)
 {

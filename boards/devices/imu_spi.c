@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 #include "icm42688p.h"
 #include "mpu6000.h"

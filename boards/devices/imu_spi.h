@@ -2,7 +2,7 @@
  * imu_spi.h - SPI IMUs (MPU-6000, ICM-42688-P) behind one interface: detect
  * the chip by WHO_AM_I, reset and configure it, read one sample at data-ready
  * and hand it on in the estimator's formats and axes (ht_imu_sample_t,
- * include/helical/dcm.h: gyro Q16 rad/s, specific force Q16 g, library body
+ * include/helical/estimator/dcm.h: gyro Q16 rad/s, specific force Q16 g, library body
  * axes X out the left wing, Y forward, Z down).
  *
  * The chips are reached through a bus interface (imu_spi_bus_t), so the same
@@ -26,7 +26,7 @@
 
 #include <stdint.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 #ifdef __cplusplus
 extern "C" {

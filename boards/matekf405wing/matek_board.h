@@ -15,7 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "matek_param_blob.h"
 #include "stm32f4_clock.h"
 #include "stm32f4_gpio.h"

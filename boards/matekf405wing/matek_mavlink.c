@@ -1,5 +1,5 @@
 /*
- * matek_mavlink.c - the MAVLink ground-station link (firmware/fw_link.h) of
+ * matek_mavlink.c - the MAVLink ground-station link (firmware/link/fw_link.h) of
  * the Matek F405-WING image on UART4: TX4 PA0, RX4 PA1 (AF8), 57600 8N1,
  * the rate of the common telemetry radios (docs/boards/matek_f405_wing.md).
  *

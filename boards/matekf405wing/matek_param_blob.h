@@ -1,6 +1,6 @@
 /*
  * matek_param_blob.h - the stored parameter set of the Matek F405-WING
- * image: every row the MAVLink link exposes (firmware/fw_link.h: every row
+ * image: every row the MAVLink link exposes (firmware/link/fw_link.h: every row
  * of every group of include/helical/params.def, LINK included) as one
  * versioned blob for the parameter store (boards/common/param_store.h), and
  * the boot-time load that puts it into the firmware configuration and the
@@ -27,7 +27,7 @@
 
 #include <stdint.h>
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "fw_step.h"
 #include "param_store.h"
 

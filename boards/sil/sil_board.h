@@ -24,7 +24,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "fw_step.h"
 
 #ifdef __cplusplus
@@ -234,7 +234,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
 void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t *c,
                     sil_actuators_t *a);
 
-/* --- ABI 15: the ground-station link (firmware/fw_link.h) -----------------
+/* --- ABI 15: the ground-station link (firmware/link/fw_link.h) -----------------
  * The host moves bytes only, as a UART driver would: the firmware's link
  * parses them and builds every frame. sil_board_step calls
  * fw_link_after_step after each control step, with the board's clock (the

@@ -5,7 +5,7 @@
  */
 #include <stdio.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 static void report(const char *field)
 {

@@ -9,7 +9,7 @@
  */
 #include "unity.h"
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "mavlink/common/mavlink.h" /* the messages, to build and read frames */
 
 #include <math.h>

@@ -6,7 +6,7 @@
  */
 #include "unity.h"
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 
 #include <math.h>
 #include <string.h>

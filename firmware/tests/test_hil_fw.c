@@ -14,7 +14,7 @@
 #include "unity.h"
 
 #include "fake_board.h"
-#include "hil_fw.h"
+#include "hil/hil_fw.h"
 #include "ht_test_support.h"
 #include "sil_board.h"
 

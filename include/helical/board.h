@@ -21,7 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 #ifdef __cplusplus
 extern "C" {

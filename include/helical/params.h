@@ -12,7 +12,7 @@
 
 #include <stdint.h>
 
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 #include "helical/params.def"
 

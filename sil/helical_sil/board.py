@@ -245,7 +245,7 @@ class Board:
                    ctypes.byref(self._act))
         return self._act
 
-    # --- ABI 15: the ground-station link (firmware/fw_link.h): bytes only ---
+    # --- ABI 15: the ground-station link (firmware/link/fw_link.h): bytes only ---
     def link_rx(self, data: bytes) -> None:
         """Bytes from the ground station into the firmware's MAVLink parser."""
         if data:

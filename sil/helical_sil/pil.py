@@ -2,7 +2,7 @@
 
 `run ... --target pil` flies a scenario exactly as the SIL does (the same
 lockstep loop of sim.py), except that each control step is computed by the
-HIL firmware image (`ht_stm32f4_hil.elf`, firmware/hil_main.c) running
+HIL firmware image (`ht_stm32f4_hil.elf`, firmware/hil/hil_main.c) running
 in `qemu-system-arm -M netduinoplus2`: the host converts the raw sensor
 samples, the truth solution and the command into the firmware's fixed-point
 formats (the conversions of boards/sil/sil_board.c, rounding to nearest with
@@ -77,7 +77,7 @@ SF_ALIGN = 0x20  # align the estimator to the TRUTH frame before the step's samp
 FRESH_GPS, FRESH_AIRSPEED, FRESH_BARO = 0x01, 0x02, 0x04
 ST_CONTROL_RAN, ST_FAILSAFE, ST_GUARD_ENGAGED = 0x01, 0x02, 0x04
 
-# output-stage functions (include/helical/mixer.h) of the SIL's four channels
+# output-stage functions (include/helical/output/mixer.h) of the SIL's four channels
 OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE = 1, 3, 4, 5
 SIL_CHANNELS = (OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE)
 
@@ -230,7 +230,7 @@ def cfg_law_payload(c: dict[str, Any]) -> bytes:
 
 
 def _channel_default(fn: int) -> dict[str, int]:
-    """os_channel_default (src/output_stage.c)."""
+    """os_channel_default (src/output/output_stage.c)."""
     thr = fn == OS_FN_THROTTLE
     return {"function": fn, "reversed": 0, "centre_us": 1000 if thr else 1500, "trim_us": 0,
             "travel_us": 1000 if thr else 500, "min_us": 1000, "max_us": 2000,

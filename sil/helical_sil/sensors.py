@@ -1,7 +1,7 @@
 """Sensor-level SIL: the IMU, GPS, pitot and baro a board would read, made from
 JSBSim's state (sensor_truth.py gives the ideal values) plus seeded errors.
 
-Outputs are in the units of the firmware's estimator (include/helical/dcm.h):
+Outputs are in the units of the firmware's estimator (include/helical/estimator/dcm.h):
 
 - IMU (``ImuSample``), library body axes (X left wing, Y forward, Z down):
   gyro rad/s, specific force in standard g (level flight [0, 0, -1]). The IMU

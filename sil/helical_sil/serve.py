@@ -3,7 +3,7 @@
 JSBSim flies the scenario's aircraft with the firmware on the board library,
 in its own flight modes (fly-by-wire, waypoint, return-to-home, manual), paced
 at N x real time, while a ground station (QGroundControl, MAVProxy, pymavlink)
-talks to the board over UDP. The firmware's link (firmware/fw_link.h, called by
+talks to the board over UDP. The firmware's link (firmware/link/fw_link.h, called by
 the board after each control step) builds and parses every MAVLink message;
 this module only moves bytes between the socket and the board.
 

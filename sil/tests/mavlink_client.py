@@ -31,7 +31,7 @@ MAV = mavutil.mavlink
 TARGET = (1, 1)  # the aircraft: system 1, autopilot component
 EARTH_R_M = 6378137.0
 
-# params.def's groups as the link names them (firmware/fw_link_param_table.c)
+# params.def's groups as the link names them (firmware/link/fw_link_param_table.c)
 GROUP_PREFIX = {"LAW": "LAW_", "DCM": "DCM_", "GUIDE": "GDE_", "ALT": "ALT_", "SPEED": "SPD_",
                 "MODES": "MOD_", "FBW": "FBW_", "NAV": "NAV_", "AOA": "AOA_", "LINK": "LNK_"}
 

@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "helical/frame_counts.h"
+#include "helical/protocols/frame_counts.h"
 
 static void check(int ok)
 {

@@ -1,11 +1,11 @@
 /*
- * libFuzzer target: arbitrary bytes into the CRSF decoder (src/rx_crsf.c),
+ * libFuzzer target: arbitrary bytes into the CRSF decoder (src/protocols/rx_crsf.c),
  * through frame_fuzz.h (the checks every frame decoder gets; the smallest
  * frame is 4 bytes). Here also: every decoded channel in 880..2159 us and the
  * mapping of its ticks, link_lost consistent, no end byte to be bad.
  */
 #include "frame_fuzz.h"
-#include "helical/rx_crsf.h"
+#include "helical/protocols/rx_crsf.h"
 
 static void check_msg(int r, const void *p)
 {

@@ -1,6 +1,6 @@
 /*
  * libFuzzer target: arbitrary bytes into the HIL frame decoder
- * (src/hil_frame.c). The first input byte picks how many ids of the table the
+ * (src/protocols/hil_frame.c). The first input byte picks how many ids of the table the
  * decoder knows; the rest is the stream. Checks, at every byte:
  *
  *   - a frame reported is exactly the last len + 6 bytes of the stream
@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "helical/hil_frame.h"
+#include "helical/protocols/hil_frame.h"
 
 static void check(int ok)
 {

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 #include "ht_reference.h"
 #include "ht_test_support.h"
 

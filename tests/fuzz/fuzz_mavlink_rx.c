@@ -1,6 +1,6 @@
 /*
  * libFuzzer target: arbitrary bytes into the MAVLink link's receive path
- * (firmware/fw_link.c and its protocols), between firmware steps. The first
+ * (firmware/link/fw_link.c and its protocols), between firmware steps. The first
  * byte chooses the mode:
  *   even: the rest is the raw stream, fed in chunks of (first byte / 2 + 1);
  *   odd:  the rest is records (selector, length, payload...) that are packed
@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fw_link.h"
+#include "link/fw_link.h"
 #include "mavlink/common/mavlink.h" /* the messages, to build and read frames */
 
 static void check(int ok)

@@ -9,7 +9,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "helical/output_stage.h"
+#include "helical/output/output_stage.h"
 
 static void check(int ok)
 {

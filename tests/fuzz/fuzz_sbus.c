@@ -1,12 +1,12 @@
 /*
- * libFuzzer target: arbitrary bytes into the SBUS decoder (src/rx_sbus.c),
+ * libFuzzer target: arbitrary bytes into the SBUS decoder (src/protocols/rx_sbus.c),
  * through frame_fuzz.h (the checks every frame decoder gets; every frame is
  * 25 bytes). Here also: every decoded channel in 880..2159 us and the mapping
  * of its ticks, failsafe frames marked unusable, one of the five end bytes;
  * no checksum, length or truncation counts (SBUS has none of them).
  */
 #include "frame_fuzz.h"
-#include "helical/rx_sbus.h"
+#include "helical/protocols/rx_sbus.h"
 
 static void check_msg(int r, const void *p)
 {

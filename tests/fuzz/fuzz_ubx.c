@@ -1,11 +1,11 @@
 /*
- * libFuzzer target: arbitrary bytes into the UBX decoder (src/ubx.c), through
+ * libFuzzer target: arbitrary bytes into the UBX decoder (src/protocols/ubx.c), through
  * frame_fuzz.h (the checks every frame decoder gets; the smallest frame is
  * 8 bytes). Here also: a known message kind, gnss_fix_ok consistent with the
  * NAV-PVT flags, no end byte to be bad.
  */
 #include "frame_fuzz.h"
-#include "helical/ubx.h"
+#include "helical/protocols/ubx.h"
 
 static void check_msg(int r, const void *p)
 {

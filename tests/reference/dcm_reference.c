@@ -1,6 +1,6 @@
 /*
  * dcm_reference.c - the estimator's equations in double (dcm_reference.h).
- * Written from docs/estimator.md, not from src/dcm.c: no fixed point, no
+ * Written from docs/estimator.md, not from src/estimator/dcm.c: no fixed point, no
  * saturation beyond the documented clamps.
  */
 #include "dcm_reference.h"

@@ -1,5 +1,5 @@
 /*
- * dcm_reference.h - the attitude estimator of include/helical/dcm.h written
+ * dcm_reference.h - the attitude estimator of include/helical/estimator/dcm.h written
  * again in double precision, straight from its equations (test code only),
  * and the rotation helpers the estimator tests share: Euler angles to R in
  * the library's axes, exact rotations, angles between attitudes.
@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 
 #define DCMR_PI 3.14159265358979323846
 

@@ -6,7 +6,7 @@
 #ifndef HT_REFERENCE_H
 #define HT_REFERENCE_H
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 typedef struct {
     double x, y, z;   /* DCM bottom row */

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 #include "ht_reference.h"
 
 /* splitmix64: small, fast, and the same sequence on every platform. */

@@ -5,7 +5,7 @@
  */
 #include <string.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 #include "param_parse.h"
 #include "unity.h"
 

@@ -11,7 +11,7 @@
 #include <stdio.h>
 
 #include "dcm_reference.h"
-#include "helical/dcm.h"
+#include "helical/estimator/dcm.h"
 #include "unity.h"
 
 #define DT_PI DCMR_PI

@@ -1,7 +1,7 @@
 /*
  * frame_test_util.h - what the UBX, CRSF and SBUS decoder tests share: a
  * seeded RNG (splitmix64: the same sequence on every platform), an 11-bit
- * channel packer written bit by bit (independent of src/rc_channels.c), and
+ * channel packer written bit by bit (independent of src/protocols/rc_channels.c), and
  * the byte-accounting identity of frame_counts.h. Header-only (static
  * inline), like q14_test_rng.h.
  */
@@ -12,7 +12,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "helical/frame_counts.h"
+#include "helical/protocols/frame_counts.h"
 #include "unity.h"
 
 static inline uint64_t ft_next(uint64_t *s)

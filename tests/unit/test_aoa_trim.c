@@ -1,11 +1,11 @@
 /* Unit tests of the angle-of-attack and elevator-trim model
- * (include/helical/aoa_trim.h) against a double-precision reference of its
+ * (include/helical/guidance/aoa_trim.h) against a double-precision reference of its
  * formulas: seeded random sweeps over tilt and airspeed, the int16 edges,
  * knife edge, the speed cut-off, normal and inverted coefficient sets, and
  * the parameter checks. */
 #include "unity.h"
 
-#include "helical/aoa_trim.h"
+#include "helical/guidance/aoa_trim.h"
 #include "ht_test_support.h"
 
 #include <math.h>

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../src/dcm_trig.h"
+#include "../../src/estimator/dcm_trig.h"
 
 DT_DEFAULT_FIXTURE()
 

@@ -1,5 +1,5 @@
 /*
- * The GPS acceleration reference (src/dcm_gps_accel.c): the accelerometer in
+ * The GPS acceleration reference (src/estimator/dcm_gps_accel.c): the accelerometer in
  * earth axes against the GPS velocity's change over the same, latency-shifted
  * intervals. Exact sensors, a 5 Hz GPS whose velocity is that of its epoch,
  * delivered gps_latency_ms later, held between solutions.

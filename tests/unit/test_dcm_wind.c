@@ -1,5 +1,5 @@
 /*
- * The estimator's wind estimate (src/dcm_wind.h): a 10 m/s wind across a
+ * The estimator's wind estimate (src/estimator/dcm_wind.h): a 10 m/s wind across a
  * 25 m/s flight. The course of the ground velocity then differs from the
  * heading by up to atan(10 / 25) = 21.8 degrees; the regression of the GPS
  * velocity on the air velocity in a turn finds the wind, and the course of

@@ -1,9 +1,9 @@
-/* Unit tests of fly-by-wire (include/helical/fbw.h): the stick with its
+/* Unit tests of fly-by-wire (include/helical/guidance/fbw.h): the stick with its
  * deadband against a double reference for every pulse 0..2500 us, the turn
  * rate and pitch scaling, the inverted switch, and parameter checks. */
 #include "unity.h"
 
-#include "helical/fbw.h"
+#include "helical/guidance/fbw.h"
 
 #include <math.h>
 #include <stddef.h>

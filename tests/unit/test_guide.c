@@ -1,5 +1,5 @@
 /*
- * test_guide.c - the turn-rate trim (include/helical/guide.h): its
+ * test_guide.c - the turn-rate trim (include/helical/guidance/guide.h): its
  * parameters, its pass-through when off, its learning against a double
  * reference of the same equations, and a simulated aircraft whose turn falls
  * short of its command.
@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "helical/guide.h"
+#include "helical/guidance/guide.h"
 #include "q14_test_rng.h"
 #include "unity.h"
 

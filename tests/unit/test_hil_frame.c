@@ -5,7 +5,7 @@
  */
 #include <string.h>
 
-#include "helical/hil_frame.h"
+#include "helical/protocols/hil_frame.h"
 #include "ht_test_support.h"
 #include "unity.h"
 

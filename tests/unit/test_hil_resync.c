@@ -15,7 +15,7 @@
  *   - phantom frames (delivered but never sent);
  *   - late frames (delivered at a later byte than their own last byte).
  *
- * It prints the table and requires, for the decoder in src/hil_frame.c: no
+ * It prints the table and requires, for the decoder in src/protocols/hil_frame.c: no
  * intact frame lost except the one frame of each merge, no phantom, nothing late, and the byte
  * accounting of hil_stats_t to add up. The seeds are fixed, so the figures are too.
  *
@@ -23,8 +23,8 @@
  * the report), built by hand against the old sources with the assertions off:
  *
  *   mkdir -p /tmp/old/helical
- *   git show 877ec22:src/hil_frame.c > /tmp/old/hil_frame.c
- *   git show 877ec22:include/helical/hil_frame.h > /tmp/old/helical/hil_frame.h
+ *   git show 877ec22:src/protocols/hil_frame.c > /tmp/old/hil_frame.c
+ *   git show 877ec22:include/helical/protocols/hil_frame.h > /tmp/old/helical/hil_frame.h
  *   cc -std=c11 -O2 -DHIL_RESYNC_REPORT_ONLY -I/tmp/old -Itests/vendor/unity \
  *      -DUNITY_INCLUDE_DOUBLE tests/unit/test_hil_resync.c /tmp/old/hil_frame.c \
  *      tests/vendor/unity/unity.c -o /tmp/old/resync && /tmp/old/resync
@@ -32,7 +32,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "helical/hil_frame.h"
+#include "helical/protocols/hil_frame.h"
 #include "unity.h"
 
 /* ids 0..5: 0 and 3 any length, the others one length each. */

@@ -22,8 +22,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "helical/holds.h"
-#include "helical/modes.h"
+#include "helical/guidance/holds.h"
+#include "helical/guidance/modes.h"
 #include "unity.h"
 
 void setUp(void) {}

@@ -1,7 +1,7 @@
-/* Unit tests of the altitude and airspeed holds (include/helical/holds.h). */
+/* Unit tests of the altitude and airspeed holds (include/helical/guidance/holds.h). */
 #include "unity.h"
 
-#include "helical/holds.h"
+#include "helical/guidance/holds.h"
 
 #include <stddef.h>
 

@@ -1,5 +1,5 @@
 /*
- * The control law's own arithmetic (src/q_inline.h, used by helical_turn.c):
+ * The control law's own arithmetic (src/math/q_inline.h, used by helical_turn.c):
  * - qi_dot3 / qi_dot3_portable: three products summed exactly and rounded
  *   once (each surface's demand), against an exact __int128 reference and bit
  *   for bit against each other, for every shift in [1, 62];
@@ -17,7 +17,7 @@
 
 /* The law again, portable, under another name. */
 #define ht_step ht_step_portable
-#include "../../src/helical_turn.c"
+#include "../../src/law/helical_turn.c"
 #undef ht_step
 void ht_step(const ht_controller_t *ctl, const ht_input_t *in, ht_output_t *out);
 

@@ -1,6 +1,6 @@
 /*
  * The law's options beyond the seed (docs/control-law.md "Extensions beyond
- * the seed"; src/ht_options.c): roll-in, sideslip rudder, vertical fade.
+ * the seed"; src/law/ht_options.c): roll-in, sideslip rudder, vertical fade.
  *
  *  - Off is the seed, bit for bit: with every option off, whatever the other
  *    option parameters and the option inputs, every output equals the

@@ -5,7 +5,7 @@
  */
 #include "unity.h"
 
-#include "helical/output_stage.h"
+#include "helical/output/output_stage.h"
 
 #include <stdint.h>
 

@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "helical/modes.h"
+#include "helical/guidance/modes.h"
 #include "unity.h"
 
 void setUp(void) {}

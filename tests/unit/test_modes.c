@@ -1,11 +1,11 @@
-/* Unit tests of the flight modes (include/helical/modes.h): the mode switch
+/* Unit tests of the flight modes (include/helical/guidance/modes.h): the mode switch
  * for every pulse, the RC-loss failsafe and its recovery, the per-mode
  * sources, bumpless transfer (a bound on the per-step surface change across
  * every mode change, checked on fixed cases and a seeded random sweep), the
  * AoA trim path, edges and the parameter checks. */
 #include "unity.h"
 
-#include "helical/modes.h"
+#include "helical/guidance/modes.h"
 #include "ht_test_support.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 /* Unit tests of waypoint navigation and the two guidance laws
- * (include/helical/nav.h): the sin-of-error primitive, the heading-error and
+ * (include/helical/guidance/nav.h): the sin-of-error primitive, the heading-error and
  * L1 laws against double-precision references on seeded random geometry,
  * arrival and the list edges, far-away positions, zero speed, parameter
  * checks, and closed-loop kinematic runs (a point mass that turns at the
@@ -7,7 +7,7 @@
  * circuit and the home loiter. */
 #include "unity.h"
 
-#include "helical/nav.h"
+#include "helical/guidance/nav.h"
 #include "ht_test_support.h"
 
 #include <math.h>

@@ -25,8 +25,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "helical/dcm.h"
-#include "helical/helical_turn.h"
+#include "helical/estimator/dcm.h"
+#include "helical/law/helical_turn.h"
 #include "unity.h"
 
 void setUp(void) {}

@@ -17,7 +17,7 @@
  */
 #include "unity.h"
 
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 #include "q14_test_rng.h"
 

@@ -19,7 +19,7 @@
  */
 #include "unity.h"
 
-#include "helical/q14.h"
+#include "helical/math/q14.h"
 
 #include "q14_test_rng.h"
 
@@ -31,7 +31,7 @@
 #endif
 /* The test is compiled with the same HT_PORTABLE_ONLY as the library it links
  * (tests/math passes it to both), so this reports the path under test. */
-#include "../../src/q14_target.h"
+#include "../../src/math/q14_target.h"
 
 __extension__ typedef __int128 q14t_i128;
 

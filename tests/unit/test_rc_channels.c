@@ -1,11 +1,11 @@
 /*
  * The 11-bit channel packing and the ticks-to-microseconds mapping shared by
- * CRSF and SBUS (src/rc_channels.c): every one of the 2048 values against a
+ * CRSF and SBUS (src/protocols/rc_channels.c): every one of the 2048 values against a
  * double-precision evaluation of 1500 + (ticks - 992) * 5 / 8 rounded half
  * up, the documented anchors, and unpacking against a bit-by-bit packer.
  */
 #include "frame_test_util.h"
-#include "helical/rc_channels.h"
+#include "helical/protocols/rc_channels.h"
 #include "unity.h"
 
 void setUp(void) {}

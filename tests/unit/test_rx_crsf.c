@@ -1,5 +1,5 @@
 /*
- * The CRSF decoder (src/rx_crsf.c). Frames are built here by an encoder of
+ * The CRSF decoder (src/protocols/rx_crsf.c). Frames are built here by an encoder of
  * this file (its own table-driven CRC-8/DVB-S2 and bit-by-bit channel
  * packer), then decoded; every decoded value is checked exactly:
  *
@@ -17,7 +17,7 @@
 #include <stdlib.h>
 
 #include "frame_test_util.h"
-#include "helical/rx_crsf.h"
+#include "helical/protocols/rx_crsf.h"
 #include "unity.h"
 
 void setUp(void) {}

@@ -1,5 +1,5 @@
 /*
- * The SBUS decoder (src/rx_sbus.c). Frames are built here (bit-by-bit
+ * The SBUS decoder (src/protocols/rx_sbus.c). Frames are built here (bit-by-bit
  * packer of frame_test_util.h) and decoded; values checked exactly:
  *
  *   - a frame captured from a Futaba SBUS2 receiver, worked out by hand;
@@ -17,7 +17,7 @@
 #include <stdlib.h>
 
 #include "frame_test_util.h"
-#include "helical/rx_sbus.h"
+#include "helical/protocols/rx_sbus.h"
 #include "unity.h"
 
 void setUp(void) {}

@@ -1,5 +1,5 @@
 /*
- * The UBX decoder and encoders (src/ubx.c, src/ubx_encode.c). Frames are
+ * The UBX decoder and encoders (src/protocols/ubx.c, src/protocols/ubx_encode.c). Frames are
  * built here with this file's encoder (the Fletcher checksum in closed form:
  * CK_A = sum of b_i, CK_B = sum of (n - i) b_i, modulo 256) and decoded;
  * every value is checked exactly:
@@ -18,7 +18,7 @@
 #include <stdlib.h>
 
 #include "frame_test_util.h"
-#include "helical/ubx.h"
+#include "helical/protocols/ubx.h"
 #include "unity.h"
 
 void setUp(void) {}

@@ -1,9 +1,9 @@
-/* Unit tests of the upset guard (include/helical/upset_guard.h): parameter
+/* Unit tests of the upset guard (include/helical/law/upset_guard.h): parameter
  * checks, engage / hold / release with hysteresis, the measured pitch ratio
  * against a double reference, and INT16 extremes of the tilt row. */
 #include "unity.h"
 
-#include "helical/upset_guard.h"
+#include "helical/law/upset_guard.h"
 
 #include <math.h>
 #include <stddef.h>

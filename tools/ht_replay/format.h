@@ -17,7 +17,7 @@
 
 #include <stdio.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 /* The header line, with its "\n". */
 void ht_format_header(FILE *out);

@@ -23,7 +23,7 @@
 #define HT_REPLAY_INPUT_CONVERT_H
 
 #include "csv_reader.h"
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 /*
  * Convert the fields' texts (indexed by ht_csv_col_t, as

@@ -14,7 +14,7 @@
 
 #include "csv_reader.h"
 #include "format.h"
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 #include "input_convert.h"
 #include "param_parse.h"
 

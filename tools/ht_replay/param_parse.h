@@ -23,7 +23,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "helical/helical_turn.h"
+#include "helical/law/helical_turn.h"
 
 /*
  * Apply one "NAME=VALUE" to *p. Returns 0 and writes the parameter to *id
