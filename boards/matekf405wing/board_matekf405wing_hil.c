@@ -6,7 +6,7 @@
  * is empty. Sending is polled (bounded per byte). The servo read-back is the
  * timers' compare registers.
  */
-#include "hil/hil_fw.h"
+#include "hil/hil_link.h"
 #include "matek_board.h"
 #include "matekf405wing_pins.h"
 #include "serial_rx_ring.h"
