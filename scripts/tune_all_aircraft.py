@@ -19,8 +19,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sil"))
 
-from helical_sil import aircraft as acm  # noqa: E402
-from helical_sil import tune as tn  # noqa: E402
+from helical_sil.campaigns import tune as tn  # noqa: E402
+from helical_sil.config import aircraft as acm  # noqa: E402
 
 
 def main() -> int:

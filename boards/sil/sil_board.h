@@ -5,7 +5,7 @@
  * the one firmware step (firmware/fw_step.h) once per IMU sample. Only the
  * two ends are host-specific: the "sensor drivers" here convert the
  * simulator's doubles (the IMU samples, GPS, pitot and baro synthesized from
- * JSBSim by sil/helical_sil/sensors.py) into the seam's fixed-point formats,
+ * JSBSim by sil/helical_sil/sensors/models.py) into the seam's fixed-point formats,
  * as a driver would from raw counts, and the "servo driver" turns each pulse
  * back into the normalized deflection JSBSim takes: (pulse - centre) / travel.
  * The scenario's commands are the step's guided command (or RC pulses for
@@ -15,7 +15,7 @@
  * Floating point exists only in this host file's conversions (parameters
  * from the scenario, sensors, actuators); the step itself is the firmware's.
  *
- * Python calls it through ctypes (sil/helical_sil/board.py mirrors these
+ * Python calls it through ctypes (sil/helical_sil/sim/board.py mirrors these
  * structs; keep both in step: sil_board_abi_version() guards it).
  */
 #ifndef HELICAL_SIL_BOARD_H
@@ -54,7 +54,7 @@ typedef struct {
      * in ms, ...). Each must be finite and within the row's bounds; a refusal
      * quotes them. estimator[HT_DCM_P_IMU_RATE - 1] is the IMU rate, a whole
      * multiple of control_rate_hz (at most SIL_IMU_MAX samples per step).
-     * sil/helical_sil/params.py reads the same table. */
+     * sil/helical_sil/config/params.py reads the same table. */
     double law[HT_PARAM_LAW_COUNT];
     double estimator[HT_PARAM_DCM_COUNT];
     /* ABI 12: the guidance between the modes and the law (guide.h), the

@@ -12,10 +12,11 @@ import traceback
 from pathlib import Path
 from typing import Any, Iterable
 
-from helical_sil.backend import BACKENDS, BackendError, map_ordered
-from helical_sil.board import BoardError
-from helical_sil.scenario import Scenario, ScenarioError, load_scenario
-from helical_sil.sim import SimError
+from helical_sil.campaigns.backend import BACKENDS, BackendError, map_ordered
+from helical_sil.campaigns.runner import progress_bar, run_one
+from helical_sil.config.scenario import ScenarioError, load_scenario
+from helical_sil.sim.board import BoardError
+from helical_sil.sim.lockstep import SimError
 
 # The exit status of every subcommand: one text, shown by each --help and
 # mirrored in sil/README.md ("Exit status").
@@ -83,37 +84,6 @@ SUMMARY_COLS = (
 )
 
 
-def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
-            csv: bool = True, seed: int | None = None,
-            scenario: Scenario | None = None, attitude: str | None = None) -> dict[str, Any]:
-    """Fly one scenario and write its outputs; returns metrics.json's content.
-    seed (fault campaign, issue 7): fly it with this seed instead of its own.
-    scenario: the file already loaded (not loaded again)."""
-    from helical_sil import metrics as met
-    from helical_sil import sim
-
-    sc = scenario if scenario is not None else load_scenario(path)
-    if seed is not None:
-        sc.seed, sc.name = seed, f"{sc.name}_seed{seed}"
-    if attitude is not None:  # --attitude: truth or estimate, whatever the file says
-        sc.attitude_source = attitude
-    res = sim.run(sc, board_lib)
-    out.mkdir(parents=True, exist_ok=True)
-    m = met.run_metrics(res)
-    checks = met.evaluate(m, sc.criteria)
-    m["pass_criteria"] = checks
-    m["passed"] = all(c["ok"] for c in checks)
-    if csv:
-        sim.write_csv(res, out / "telemetry.csv")
-    with (out / "metrics.json").open("w") as f:
-        json.dump(m, f, indent=2, allow_nan=False)
-        f.write("\n")
-    if plots:
-        from helical_sil.plots import write_plots
-        write_plots(res, out)
-    return m
-
-
 def _summary_row(m: dict[str, Any]) -> dict[str, str]:
     """The headline numbers of a run: the worst over its segments."""
     segs = m["segments"]
@@ -160,30 +130,16 @@ def format_table(rows: list[dict[str, str]]) -> str:
                           [[r.get(k, "") for k, _h, _f in SUMMARY_COLS] for r in rows])
 
 
-def _progress(i: int, n: int, name: str, t0: float) -> None:
-    """A progress bar on stderr: redrawn in place on a terminal, one line per
-    scenario in a log (ctest, CI)."""
-    width = 30
-    done = int(width * i / n) if n else width
-    bar = "#" * done + "-" * (width - done)
-    text = f"[{bar}] {i}/{n} {time.perf_counter() - t0:6.1f}s {name[:32]:<32}"
-    if sys.stderr.isatty():
-        sys.stderr.write("\r" + text + ("\n" if i == n else ""))
-    else:
-        sys.stderr.write(text.rstrip() + "\n")
-    sys.stderr.flush()
-
-
 def cmd_run(args: argparse.Namespace) -> int:
     sc = load_scenario(Path(args.scenario))  # exit 2 before anything is made or flown
     names: tuple[str, ...] = RUN_OUTPUTS
     if not args.no_plots:
-        from helical_sil.plots import PLOT_FILES
+        from helical_sil.analysis.plots import PLOT_FILES
         names += PLOT_FILES
     out = prepare_out(args.out, names)
     # --- PIL (issue 8): --target pil flies the firmware image under QEMU ---
     if getattr(args, "target", "sil") == "pil":
-        from helical_sil import pil
+        from helical_sil.live import pil
         with pil.as_sim_target(args.elf) as pil_runs:
             m = run_one(Path(args.scenario), out, args.board_lib,
                         plots=not args.no_plots, scenario=sc, attitude=args.attitude)
@@ -277,12 +233,12 @@ def cmd_batch(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     failed_run = False
     files = [f for f, _sd, _n in runs]
-    _progress(0, len(files), "", t0)
+    progress_bar(0, len(files), "", t0)
     jobs = [(str(f), str(out / name), args.board_lib, not args.no_plots, sd, run_att[name])
             for f, sd, name in runs]
     done = map_ordered(_batch_one, jobs, jobs=args.jobs, backend=args.backend,
                        address=args.address,
-                       progress=lambda k, r: _progress(k, len(files), r[0], t0))
+                       progress=lambda k, r: progress_bar(k, len(files), r[0], t0))
     for (_f, _sd, name), (_n, m, err) in zip(runs, done):
         if err is not None:  # the file changed meanwhile, or the simulation failed
             sys.stderr.write(f"\nerror: {err}\n")
@@ -293,7 +249,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
         results[name] = {"passed": m["passed"], "run": m["run"],
                          "pass_criteria": m["pass_criteria"]}
     # --- end fault campaign ---
-    _progress(len(files), len(files), "done", t0)
+    progress_bar(len(files), len(files), "done", t0)
     table = format_table(rows)
     print(table)
     (out / "summary.md").write_text(table + "\n")
@@ -412,15 +368,15 @@ def cmd_compare(args: argparse.Namespace) -> int:
 
 # --- fault campaign (issue 7): the upset-recovery campaign ---
 def cmd_upsets(args: argparse.Namespace) -> int:
-    from helical_sil import upsets
-    from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR, load_aircraft
+    from helical_sil.campaigns import upsets
+    from helical_sil.config.scenario import DEFAULT_AIRCRAFT_DIR, load_aircraft
     if args.count < 1:
         raise UsageError("--count must be at least 1")
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
     for ac in args.aircraft:  # exit 2 before the output folder is made
         load_aircraft(ac, [DEFAULT_AIRCRAFT_DIR], Path("upsets"), "--aircraft")
-    from helical_sil.options import OptionsError, parse_set
+    from helical_sil.campaigns.options import OptionsError, parse_set
     try:
         overrides = parse_set(args.set, "--set")
     except OptionsError as e:
@@ -458,7 +414,7 @@ _HELP: dict[str, Any] = {"epilog": EXIT_STATUS, "formatter_class": _HelpFormatte
 
 
 def _add_upsets_parser(sub: Any) -> None:
-    from helical_sil import upsets
+    from helical_sil.campaigns import upsets
     u = sub.add_parser(
         "upsets", **_HELP, help="upset-recovery campaign: random attitudes, recover to level flight",
         description="Fly COUNT seeded random upsets per aircraft (any bank, pitch +-80 deg, "
@@ -506,12 +462,12 @@ def _add_upsets_parser(sub: Any) -> None:
 
 
 def cmd_aircraft_list(args: argparse.Namespace) -> int:
-    from helical_sil import aircraft as acm
+    from helical_sil.config import aircraft as acm
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
     t0 = time.perf_counter()
     models = acm.list_models(args.altitude_m, include_all=args.all, jobs=args.jobs,
-                             progress=lambda i, n, name: _progress(i, n, name, t0))
+                             progress=lambda i, n, name: progress_bar(i, n, name, t0))
     rows = [[m.name, "yes" if m.fixed_wing else "no", str(m.engines),
              "yes" if m.trims else ("-" if not m.fixed_wing else "no"),
              ", ".join(f"{v:g}" for v in m.trims_at), acm.explain(m)] for m in models]
@@ -530,7 +486,7 @@ def cmd_aircraft_list(args: argparse.Namespace) -> int:
 
 
 def cmd_aircraft_new(args: argparse.Namespace) -> int:
-    from helical_sil import aircraft as acm
+    from helical_sil.config import aircraft as acm
     out = Path(args.out)
     if out.exists() and not args.force:
         raise UsageError(f"{out} exists (--force overwrites it)")
@@ -556,7 +512,7 @@ def cmd_aircraft_new(args: argparse.Namespace) -> int:
 
 
 def cmd_tune(args: argparse.Namespace) -> int:
-    from helical_sil import tune as tn
+    from helical_sil.campaigns import tune as tn
     if args.jobs < 1 or args.trials < 1:
         raise UsageError("--jobs and --trials must be at least 1")
     src = Path(args.aircraft)
@@ -565,7 +521,7 @@ def cmd_tune(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     r = tn.tune(src, Path(args.out), args.trials, args.seed, args.jobs, args.backend,
                 args.address, args.board_lib,
-                progress=lambda i, n, what: _progress(i, n, what, t0))
+                progress=lambda i, n, what: progress_bar(i, n, what, t0))
     print(tn.report_md(r))
     print(f"wrote {Path(args.out).resolve()} (report.md, search.png, result.json, "
           f"{Path(r['tuned_file']).name}, study.db: run again to continue the search)")
@@ -592,7 +548,7 @@ def _add_tune_parser(sub: Any) -> None:
 
 
 def _add_aircraft_parser(sub: Any) -> None:
-    from helical_sil import aircraft as acm
+    from helical_sil.config import aircraft as acm
     a = sub.add_parser("aircraft", **_HELP, help="the JSBSim models that can be flown",
                        description="The aircraft of the installed JSBSim wheel.")
     asub = a.add_subparsers(dest="aircraft_cmd", required=True)
@@ -638,7 +594,7 @@ def cmd_options(args: argparse.Namespace) -> int:
 
     from tqdm import tqdm
 
-    from helical_sil import options as opt
+    from helical_sil.campaigns import options as opt
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
     try:
@@ -665,7 +621,7 @@ def cmd_options(args: argparse.Namespace) -> int:
         for a in args.aircraft:
             p = Path(a)
             if not p.is_file():
-                from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR
+                from helical_sil.config.scenario import DEFAULT_AIRCRAFT_DIR
                 p = DEFAULT_AIRCRAFT_DIR / f"{a}.toml"
             if not p.is_file():
                 raise UsageError(f"--aircraft {a}: neither a file nor an aircraft of "
@@ -708,7 +664,7 @@ def cmd_options(args: argparse.Namespace) -> int:
 
 
 def _add_options_parser(sub: Any) -> None:
-    from helical_sil import options as opt
+    from helical_sil.campaigns import options as opt
     o = sub.add_parser(
         "options", **_HELP, help="the law's options (issue 17) side by side",
         description="Fly every row (the scenarios of a folder, or the standard manoeuvres of "
@@ -746,7 +702,7 @@ def _add_options_parser(sub: Any) -> None:
     o.set_defaults(func=cmd_options)
 # --- end law options ---
 def cmd_serve(args: argparse.Namespace) -> int:
-    from helical_sil import serve as sv
+    from helical_sil.live import serve as sv
     speed = 0.0 if args.fast else args.speed
     try:
         return sv.run_serve(Path(args.scenario), args.mavlink, speed, args.duration, args.mode,

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil.board import BoardError, find_board_library
+from helical_sil.sim.board import BoardError, find_board_library
 
 SIL_DIR = Path(__file__).resolve().parents[1]
 SCENARIOS = SIL_DIR / "scenarios"

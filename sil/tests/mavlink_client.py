@@ -24,7 +24,7 @@ os.environ.setdefault("MAVLINK20", "1")  # before pymavlink is imported: MAVLink
 
 from pymavlink import mavutil  # noqa: E402
 
-from helical_sil import params  # noqa: E402
+from helical_sil.config import params  # noqa: E402
 
 SIL_DIR = Path(__file__).resolve().parents[1]
 MAV = mavutil.mavlink

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from helical_sil.sensor_truth import G0, FdmState
+from helical_sil.sensors.truth import G0, FdmState
 
 # level flight at 1500 m ISA (84 556 Pa, 1.0581 kg/m^3), 50 m/s north
 LEVEL = FdmState(phi_rad=0.0, theta_rad=0.0, psi_rad=0.0, pqr_rad_s=(0.0, 0.0, 0.0),

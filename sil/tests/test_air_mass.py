@@ -13,8 +13,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from helical_sil import metrics, sim
-from helical_sil.scenario import ScenarioError, load_scenario
+from helical_sil.analysis import metrics
+from helical_sil.config.scenario import ScenarioError, load_scenario
+from helical_sil.sim import lockstep
 
 from conftest import SCENARIOS
 
@@ -188,7 +189,7 @@ def test_net_criterion_needs_the_climb_capability(tmp_path: Path) -> None:
 
 def test_telemetry_logs_the_turbulence_and_integrates_it(tmp_path: Path, board_lib: str) -> None:
     sc = load_scenario(_write(tmp_path, BASE + '[wind]\nturbulence = "severe"\n'))
-    tel = sim.run(sc, board_lib).telemetry
+    tel = lockstep.run(sc, board_lib).telemetry
     w = tel["wind_down_m_s"]
     assert np.std(w) > 1.0 and np.std(tel["wind_north_m_s"]) > 1.0
     assert tel["air_down_m"][0] == 0.0
@@ -196,7 +197,7 @@ def test_telemetry_logs_the_turbulence_and_integrates_it(tmp_path: Path, board_l
     # step it moves by about the wind logged at that step
     rate = np.diff(tel["air_down_m"]) / DT
     assert float(np.sqrt(np.mean((rate - w[:-1]) ** 2))) < 0.5
-    calm = sim.run(load_scenario(_write(tmp_path, BASE)), board_lib).telemetry
+    calm = lockstep.run(load_scenario(_write(tmp_path, BASE)), board_lib).telemetry
     # calm air (JSBSim's trim leaves a wind of order 1e-14 m/s)
     assert np.allclose(calm["air_down_m"], 0.0, atol=1e-9)
     assert np.allclose(calm["wind_down_m_s"], 0.0, atol=1e-9)
@@ -209,11 +210,11 @@ def test_the_steady_wind_is_applied_after_the_trim_and_ramped_in(tmp_path: Path,
     gust of the full wind speed on the trimmed aircraft)."""
     text = BASE.replace("duration_s = 4", "duration_s = 8")
     text += "[wind]\nnorth_m_s = -4\neast_m_s = 10\ndown_m_s = 0.5\n"
-    tel = sim.run(load_scenario(_write(tmp_path, text)), board_lib).telemetry
+    tel = lockstep.run(load_scenario(_write(tmp_path, text)), board_lib).telemetry
     t = tel["t_s"]
-    half = int(np.argmin(np.abs(t - sim.WIND_RAMP_S / 2)))
+    half = int(np.argmin(np.abs(t - lockstep.WIND_RAMP_S / 2)))
     assert tel["wind_east_m_s"][half] == pytest.approx(5.0, abs=0.1)
-    late = t >= sim.WIND_RAMP_S
+    late = t >= lockstep.WIND_RAMP_S
     assert np.allclose(tel["wind_east_m_s"][late], 10.0, atol=1e-6)
     assert np.allclose(tel["wind_north_m_s"][late], -4.0, atol=1e-6)
     assert np.allclose(tel["wind_down_m_s"][late], 0.5, atol=1e-6)
@@ -230,7 +231,7 @@ def test_severe_turbulence_seed8_downdraft_is_beyond_the_climb_and_does_not_stal
     pitch (its air-relative climb is the GPS's), a known limit
     (docs/estimator.md "Limits")."""
     base = load_scenario(SCENARIOS / "faults" / "c172p_turbulence_severe.toml")
-    res = sim.run(dataclasses.replace(base, seed=8, attitude_source="truth"), board_lib)
+    res = lockstep.run(dataclasses.replace(base, seed=8, attitude_source="truth"), board_lib)
     tel = res.telemetry
     down = tel["t_s"] >= 48.0
     assert np.mean(tel["wind_down_m_s"][down]) > 10.0

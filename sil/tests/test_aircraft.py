@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from helical_sil import aircraft as acm
 from helical_sil.cli import main
+from helical_sil.config import aircraft as acm
 
 
 def _by_name() -> dict[str, acm.ModelInfo]:
@@ -57,7 +57,7 @@ def test_aircraft_new_writes_a_file_the_loader_takes(tmp_path) -> None:
     the file loads as an aircraft of a scenario."""
     from pathlib import Path
 
-    from helical_sil.scenario import load_scenario
+    from helical_sil.config.scenario import load_scenario
     (tmp_path / "aircraft").mkdir()
     out = tmp_path / "aircraft" / "mine.toml"
     assert main(["aircraft", "new", "c172p", "--out", str(out)]) == 0
@@ -97,7 +97,7 @@ def _scenario(tmp_path, aircraft: str):
 def test_aircraft_new_for_a_model_that_does_not_trim(tmp_path) -> None:
     """JSBSim's pa28 trims at no speed here: the file says so, with JSBSim's
     message and the trim = false path, and still loads."""
-    from helical_sil.scenario import load_scenario
+    from helical_sil.config.scenario import load_scenario
     (tmp_path / "aircraft").mkdir()
     out = tmp_path / "aircraft" / "pa.toml"
     assert main(["aircraft", "new", "pa28", "--out", str(out)]) == 0

@@ -1,4 +1,4 @@
-"""The backends of batch, upsets and tune (helical_sil/backend.py): the local
+"""The backends of batch, upsets and tune (helical_sil/campaigns/backend.py): the local
 process pool and Ray give the same results, bit for bit, in the inputs'
 order. The Ray test starts a local Ray (marker `ray`: ctest runs it as
 sil_ray_backend)."""
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil.backend import BackendError, map_ordered
+from helical_sil.campaigns.backend import BackendError, map_ordered
 from helical_sil.cli import main
 
 

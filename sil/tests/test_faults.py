@@ -10,8 +10,11 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from helical_sil import cli, faults, metrics, upsets
-from helical_sil.scenario import ScenarioError, Upset, load_scenario
+from helical_sil import cli
+from helical_sil.analysis import metrics
+from helical_sil.campaigns import upsets
+from helical_sil.config.scenario import ScenarioError, Upset, load_scenario
+from helical_sil.sim import faults
 
 from conftest import SCENARIOS
 

@@ -8,8 +8,8 @@ import jsbsim
 import numpy as np
 import pytest
 
-from helical_sil import frames
-from helical_sil.sim import _quiet_stdout
+from helical_sil.sensors import frames
+from helical_sil.sim.lockstep import _quiet_stdout
 
 ATTITUDES = [  # phi, theta, psi in degrees
     (0.0, 0.0, 0.0), (30.0, 0.0, 10.0), (-45.0, 10.0, 200.0), (0.0, -20.0, 90.0),

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helical_sil import metrics as met
-from helical_sil import sim
-from helical_sil.scenario import ScenarioError, load_scenario
+from helical_sil.analysis import metrics as met
+from helical_sil.config.scenario import ScenarioError, load_scenario
+from helical_sil.sim import lockstep
 
 GOOD = """
 aircraft = "c172p"
@@ -117,15 +117,15 @@ def test_modes_and_commands_are_exclusive(tmp_path: Path) -> None:
 def test_stick_pulses_round_trip() -> None:
     for db in (0.0, 8.0, 30.0):
         for stick in (-1.0, -0.5, -0.1, 0.0, 0.2, 0.7, 1.0):
-            us = sim.stick_pulse_us(stick, db)
-            assert abs(sim.stick_of_pulse(us, db) - stick) <= 1.0 / (500 - db)
-    assert [sim.mode_of_pulse(u) for u in (1000, 1500, 2000, 2150)] == \
+            us = lockstep.stick_pulse_us(stick, db)
+            assert abs(lockstep.stick_of_pulse(us, db) - stick) <= 1.0 / (500 - db)
+    assert [lockstep.mode_of_pulse(u) for u in (1000, 1500, 2000, 2150)] == \
         ["manual", "fbw", "waypoint", "rth"]
 
 
 def test_modes_run_through_the_c_board(tmp_path: Path, board_lib: str) -> None:
     sc = load_scenario(_write(tmp_path, GOOD))
-    res = sim.run(sc, board_lib)
+    res = lockstep.run(sc, board_lib)
     tel = res.telemetry
     t = tel["t_s"]
     # the C modes followed the switch, then the failsafe took over

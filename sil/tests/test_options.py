@@ -12,9 +12,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helical_sil import cli, metrics, options, upsets
-from helical_sil.roll_limit import FullAileron, coordinated_bank_deg, first_crossing
-from helical_sil.scenario import load_scenario
+from helical_sil import cli
+from helical_sil.analysis import metrics
+from helical_sil.campaigns import options, upsets
+from helical_sil.campaigns.roll_limit import FullAileron, coordinated_bank_deg, first_crossing
+from helical_sil.config.scenario import load_scenario
 
 # --- the metrics -------------------------------------------------------------------
 

@@ -16,10 +16,11 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil import params, pil
-from helical_sil.board import Board, BoardError, compiled_table
-from helical_sil.scenario import (ESTIMATOR_KEYS, GAIN_BOUNDS, GAIN_DEFAULTS, LAW_PARAMS,
-                                  ScenarioError, load_scenario)
+from helical_sil.config import params
+from helical_sil.config.scenario import (ESTIMATOR_KEYS, GAIN_BOUNDS, GAIN_DEFAULTS, LAW_PARAMS,
+                                         ScenarioError, load_scenario)
+from helical_sil.live import pil
+from helical_sil.sim.board import Board, BoardError, compiled_table
 
 SIL_DIR = Path(__file__).resolve().parents[1]
 
@@ -193,7 +194,7 @@ def test_mode_tables_quote_the_tables_bounds(table: str, key: str, value: float,
                                              message: str) -> None:
     """[modes], [nav], [fbw], [aoa] (of a scenario or an aircraft file) take
     their bounds from the table's rows."""
-    from helical_sil import scenario
+    from helical_sil.config import scenario
     with pytest.raises(ScenarioError) as e:
         scenario._parse_mode_tables(Path("a.toml"), {table: {key: value}},
                                     scenario.ModesConfig())
@@ -203,10 +204,10 @@ def test_mode_tables_quote_the_tables_bounds(table: str, key: str, value: float,
 
 
 def test_the_estimator_config_is_in_table_units(tmp_path: Path) -> None:
-    from helical_sil import sim
+    from helical_sil.sim import lockstep
     sc = load_scenario(_scenario(tmp_path, "[estimator]\ngyro_bias_max_deg_s = 10\n"
                                            "gps_latency_s = 0.05\nkp_yaw = 1.5"))
-    est = sim.estimator_config(sc)
+    est = lockstep.estimator_config(sc)
     assert set(est) == set(params.ESTIMATOR_BY_NAME)
     assert est["gyro_bias_max"] == pytest.approx(10 * math.pi / 180)
     assert est["gps_latency"] == pytest.approx(50.0) and est["kp_yaw"] == 1.5
@@ -254,9 +255,9 @@ def test_the_guidance_reaches_the_board_and_its_refusal_names_the_row(tmp_path: 
                                                                       board_lib: str) -> None:
     """[guidance] values go to the board in the table's units; the board
     itself refuses a value beyond a row, quoting it."""
-    from helical_sil import sim
+    from helical_sil.sim import lockstep
     sc = load_scenario(_scenario(tmp_path, "[guidance]\nturn_trim = 0\nturn_trim_tau = 9\n"))
-    cfg = dict(sim.board_config(sc, {"aileron": 0.0, "elevator": 0.0, "rudder": 0.0,
+    cfg = dict(lockstep.board_config(sc, {"aileron": 0.0, "elevator": 0.0, "rudder": 0.0,
                                      "throttle": 0.5}))
     assert cfg["guidance"] == {"turn_trim": 0.0, "turn_trim_tau": 9.0}
     Board(cfg, board_lib)  # accepted

@@ -17,9 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helical_sil import metrics as met
-from helical_sil import params, pil, sim
-from helical_sil.scenario import load_scenario
+from helical_sil.analysis import metrics as met
+from helical_sil.config import params
+from helical_sil.config.scenario import load_scenario
+from helical_sil.live import pil
+from helical_sil.sim import lockstep
 
 SIL_DIR = Path(__file__).resolve().parents[1]
 SHORT = SIL_DIR / "scenarios" / "pil" / "default_short.toml"  # [attitude] source = "truth"
@@ -184,7 +186,7 @@ def test_step_frames_carry_the_host_boards_integers() -> None:
 def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path: Path,
                                              scenario: Path) -> None:
     sc = load_scenario(scenario)
-    ref = sim.run(sc, board_lib)
+    ref = lockstep.run(sc, board_lib)
     r = pil.run(sc, board_lib, elf)
     got = r.result
     n = len(ref.telemetry["t_s"])
@@ -192,7 +194,7 @@ def test_pil_flies_like_the_sil_step_by_step(elf: str, board_lib: str, tmp_path:
     surf_ref = np.column_stack([ref.telemetry[c] for c in SURFACES])
     surf_pil = np.column_stack([got.telemetry[c] for c in SURFACES])
     mismatching = int(np.count_nonzero(np.any(surf_ref != surf_pil, axis=1)))
-    differing_columns = [c for c in sim.COLUMNS
+    differing_columns = [c for c in lockstep.COLUMNS
                          if not np.array_equal(ref.telemetry[c], got.telemetry[c],
                                                equal_nan=True)]
     m_ref, m_pil = met.run_metrics(ref), met.run_metrics(got)

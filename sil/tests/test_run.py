@@ -11,10 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil import params, sim
-from helical_sil.board import Board, SilActuators
 from helical_sil.cli import main
-from helical_sil.scenario import load_scenario
+from helical_sil.config import params
+from helical_sil.config.scenario import load_scenario
+from helical_sil.sim import lockstep
+from helical_sil.sim.board import Board, SilActuators
 
 SHORT = """
 aircraft = "c172p"
@@ -46,9 +47,9 @@ max = 3
 def _csv_hash(tmp_path: Path, name: str, seed: int, board_lib: str) -> str:
     p = tmp_path / f"{name}.toml"
     p.write_text(SHORT.format(seed=seed))
-    res = sim.run(load_scenario(p), board_lib)
+    res = lockstep.run(load_scenario(p), board_lib)
     out = tmp_path / f"{name}.csv"
-    sim.write_csv(res, out)
+    lockstep.write_csv(res, out)
     return hashlib.sha256(out.read_bytes()).hexdigest()
 
 
@@ -191,7 +192,7 @@ def test_a_failed_criterion_fails_the_run(tmp_path: Path, board_lib: str) -> Non
 def test_untrimmed_start_flies(tmp_path: Path, board_lib: str) -> None:
     p = tmp_path / "s.toml"
     p.write_text(SHORT.format(seed=1).replace("[wind]", "[initial]\ntrim = false\n[wind]"))
-    res = sim.run(load_scenario(p), board_lib)
+    res = lockstep.run(load_scenario(p), board_lib)
     assert res.trims["throttle"] >= 0.0
     assert len(res.telemetry["t_s"]) == 12 * 40
 
@@ -244,7 +245,7 @@ def test_the_envelope_is_reported_with_when_and_how_long() -> None:
 
     import numpy as np
 
-    from helical_sil import metrics as met
+    from helical_sil.analysis import metrics as met
     t = np.arange(10) * 0.1
     alpha = np.array([5, 5, 5, 5, 5, 17, 18, 16.5, 5, 5], dtype=float)
     v = np.array([50, 50, 50, 50, 50, 50, 50, 50, 66, 70], dtype=float)

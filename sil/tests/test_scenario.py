@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from helical_sil.scenario import ScenarioError, load_scenario
+from helical_sil.config.scenario import ScenarioError, load_scenario
 
 from conftest import SCENARIOS
 

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from sensor_states import LEVEL, state
 
-from helical_sil import sensor_truth as st
-from helical_sil.sensors import (BaroConfig, GyroConfig, PitotConfig, SensorConfig, SensorModel,
-                                 config_from_dict)
+from helical_sil.sensors import truth as st
+from helical_sil.sensors.models import (BaroConfig, GyroConfig, PitotConfig, SensorConfig,
+                                        SensorModel, config_from_dict)
 
 
 def _cfg(pitot: PitotConfig | None = None, baro: BaroConfig | None = None) -> SensorConfig:

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from sensor_states import LEVEL, state
 
-from helical_sil import sensor_truth as st
-from helical_sil.sensors import GpsConfig, GpsSample, SensorConfig, SensorModel
+from helical_sil.sensors import truth as st
+from helical_sil.sensors.models import GpsConfig, GpsSample, SensorConfig, SensorModel
 
 IMU_DT = 1.0 / 200.0
 

@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 from sensor_states import LEVEL, state
 
-from helical_sil import sensor_truth as st
-from helical_sil.sensors import (AccelConfig, GyroConfig, ImuConfig, SensorConfig, SensorModel)
+from helical_sil.sensors import truth as st
+from helical_sil.sensors.models import (AccelConfig, GyroConfig, ImuConfig, SensorConfig,
+                                        SensorModel)
 
 IDEAL = SensorConfig.ideal()
 ZERO_GYRO = IDEAL.imu.gyro

@@ -12,9 +12,9 @@ import jsbsim
 import numpy as np
 import pytest
 
-from helical_sil import frames
-from helical_sil import sensor_truth as st
-from helical_sil.sim import _quiet_stdout
+from helical_sil.sensors import frames
+from helical_sil.sensors import truth as st
+from helical_sil.sim.lockstep import _quiet_stdout
 
 FT = frames.FT
 OMEGA_EARTH = 7.292115e-5  # rad/s
@@ -193,7 +193,7 @@ def test_pressure_altitude_against_isa_table() -> None:
 def test_full_model_in_a_jsbsim_loop() -> None:
     """The integrator's loop: read the state after every frame, IMU at the sim
     rate (120 Hz), GPS at 5 Hz with 0.1 s latency, default errors."""
-    from helical_sil.sensors import ImuConfig, SensorConfig, SensorModel
+    from helical_sil.sensors.models import ImuConfig, SensorConfig, SensorModel
 
     fdm = _trimmed("c172p", 50.0, lat_deg=47.0)
     model = SensorModel(SensorConfig(imu=ImuConfig(rate_hz=120.0)), seed=1)

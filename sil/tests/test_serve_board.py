@@ -9,9 +9,9 @@ import os
 
 import pytest
 
-from helical_sil.board import Board
-from helical_sil.scenario import load_scenario
-from helical_sil.serve import Flight, default_mode, serve_modes
+from helical_sil.config.scenario import load_scenario
+from helical_sil.live.serve import Flight, default_mode, serve_modes
+from helical_sil.sim.board import Board
 
 os.environ.setdefault("MAVLINK20", "1")
 mavutil = pytest.importorskip("pymavlink.mavutil")

@@ -26,10 +26,10 @@ pytest.importorskip("pymavlink")
 from mavlink_client import (MAV, SIL_DIR, GroundStation, distance_m,  # noqa: E402
                             offset_deg, param_id)
 
-from helical_sil import params  # noqa: E402
-from helical_sil.board import table_values  # noqa: E402
-from helical_sil.scenario import load_scenario  # noqa: E402
-from helical_sil.serve import Flight, parse_endpoint, ServeError  # noqa: E402
+from helical_sil.config import params  # noqa: E402
+from helical_sil.config.scenario import load_scenario  # noqa: E402
+from helical_sil.live.serve import Flight, parse_endpoint, ServeError  # noqa: E402
+from helical_sil.sim.board import table_values  # noqa: E402
 
 SCENARIO = SIL_DIR / "scenarios" / "c172p_level_hold.toml"
 # HEARTBEAT custom_mode of each flight mode (docs/mavlink.md)

@@ -5,9 +5,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from helical_sil import tune as tn
+from helical_sil.campaigns import tune as tn
 from helical_sil.cli import main
-from helical_sil.scenario import load_aircraft
+from helical_sil.config.scenario import load_aircraft
 
 SIL = Path(__file__).resolve().parents[1]
 C172P = SIL / "scenarios" / "aircraft" / "c172p.toml"

@@ -1,8 +1,8 @@
 """The parameter table (include/helical/params.def), read by the harness.
 
 The C side expands the same file with the preprocessor; this module parses its
-rows, so the SIL configuration (board.py), the scenario loader's bounds and
-defaults (scenario.py, sim.py) and the HIL configuration frames (pil.py) all
+rows, so the SIL configuration (sim/board.py), the scenario loader's bounds and
+defaults (scenario.py, sim/lockstep.py) and the HIL configuration frames (live/pil.py) all
 follow the one declaration. sil/tests/test_params.py compares this view with
 the table compiled into the board library (names, units, formats, stored
 bounds and defaults), so the two readers cannot drift apart.
@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-DEF_PATH = Path(__file__).resolve().parents[2] / "include" / "helical" / "params.def"
+DEF_PATH = Path(__file__).resolve().parents[3] / "include" / "helical" / "params.def"
 
 
 @dataclass(frozen=True)

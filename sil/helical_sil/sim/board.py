@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from helical_sil import params as ptable
+from helical_sil.config import params as ptable
 
 ABI_VERSION = 15
 IMU_MAX = 32  # SIL_IMU_MAX: IMU samples per control step
@@ -145,7 +145,7 @@ def find_board_library(explicit: str | os.PathLike[str] | None = None) -> Path:
         if not p.is_file():
             raise BoardError(f"HT_SIL_BOARD_LIB points to a missing file: {p}")
         return p
-    root = Path(__file__).resolve().parents[2]
+    root = Path(__file__).resolve().parents[3]
     for cand in (root / "build" / "host" / "boards" / "sil" / "libhelical_sil_board.so",
                  root / "build" / "host" / "boards" / "sil" / "libhelical_sil_board.dylib"):
         if cand.is_file():

@@ -10,7 +10,7 @@ From ``fault_start_s`` on (the [sensors] keys, sil/README.md):
   Q11 format itself clips at +-16 rad/s).
 
 Gyro noise and bias, airspeed noise and latency are the older keys (from t = 0;
-sim.py). The spikes draw from their own generator, seeded from the scenario
+lockstep.py). The spikes draw from their own generator, seeded from the scenario
 seed, so scenarios without these faults draw exactly the numbers they drew
 before (their telemetry is unchanged).
 """
@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from helical_sil.scenario import Scenario
+from helical_sil.config.scenario import Scenario
 
 # stream of the spike generator: PCG64 seeded with (scenario seed, this)
 SPIKE_STREAM = 0x7A17

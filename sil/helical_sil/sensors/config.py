@@ -1,4 +1,4 @@
-"""Configuration of the sensor models (sensors.py): one frozen dataclass per
+"""Configuration of the sensor models (models.py): one frozen dataclass per
 sensor with documented defaults (the source of each in its comment and in
 sil/README.md, "Sensor models"), value checks that name the field, and
 ``config_from_dict`` for nested tables (a TOML section)."""
@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from helical_sil import sensor_truth as st
+from helical_sil.sensors import truth as st
 
 DEG = math.pi / 180.0
 PSI_PA = 6894.757293168  # Pa per psi

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from helical_sil.scenario import Scenario
+from helical_sil.config.scenario import Scenario
 
 LIMIT_WINDOW_S = 5.0   # long enough for any target bank up to 90 deg on the slowest model
 
@@ -64,8 +64,8 @@ def first_crossing(t: np.ndarray, y: np.ndarray, level: float) -> float | None:
 
 
 def _roll(sc: Scenario, direction: float, window_s: float) -> tuple[np.ndarray, np.ndarray]:
-    from helical_sil import sim
-    fdm = sim.make_fdm(sc)
+    from helical_sil.sim import lockstep
+    fdm = lockstep.make_fdm(sc)
     fdm["fcs/aileron-cmd-norm"] = direction
     n = int(round(window_s * sc.sim_rate_hz))
     t = np.zeros(n + 1)

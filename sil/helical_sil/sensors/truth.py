@@ -1,7 +1,7 @@
 """The ideal sensors: what a perfect IMU, GPS, pitot and baro would read,
 as pure functions of one JSBSim state snapshot (``FdmState``).
 
-The error models of sensors.py are applied on top of these values; keeping
+The error models of models.py are applied on top of these values; keeping
 this part pure lets tests/test_sensors_physics.py check it against physics
 (1 g in level flight, n = 1/cos(phi) in a coordinated turn, the specific force
 against the finite-differenced inertial velocity).
@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import jsbsim
 
-from helical_sil import frames
+from helical_sil.sensors import frames
 
 G0 = 9.80665  # m/s^2: the unit "g" of an accelerometer (standard gravity)
 FT = frames.FT

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-from helical_sil.sim import RunResult  # noqa: E402
+from helical_sil.sim.lockstep import RunResult  # noqa: E402
 
 PLOT_FILES = ("attitude.png", "turn_rate.png", "altitude.png", "surfaces.png",
               "ground_track.png")

@@ -19,12 +19,12 @@ from typing import Any, Iterator
 import jsbsim
 import numpy as np
 
-from helical_sil import frames, params
-from helical_sil.board import Board
-from helical_sil import sensors as sensors_mod
-from helical_sil.board import IMU_MAX
-from helical_sil.faults import SensorFaults  # fault campaign (issue 7)
-from helical_sil.scenario import ESTIMATOR_KEYS, Scenario
+from helical_sil.config import params
+from helical_sil.config.scenario import ESTIMATOR_KEYS, Scenario
+from helical_sil.sensors import frames
+from helical_sil.sensors import models as sensors_mod
+from helical_sil.sim.board import IMU_MAX, Board
+from helical_sil.sim.faults import SensorFaults  # fault campaign (issue 7)
 
 G = 9.80665
 FT = frames.FT

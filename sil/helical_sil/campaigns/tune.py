@@ -27,8 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from helical_sil import params
-from helical_sil.scenario import load_aircraft
+from helical_sil.config import params
+from helical_sil.config.scenario import load_aircraft
 
 # the law's gains the search moves (the holds keep the file's)
 TUNED = ("kp_aileron", "kd_aileron", "kff_aileron", "kp_elevator", "kd_elevator",
@@ -131,15 +131,15 @@ def cost_of(metrics: dict[str, float]) -> float:
 def fly(job: tuple[str, str, dict[str, float], str | None]) -> Flight:
     """One trial's flight (in whichever process the backend gives it)."""
     scenario, out, gains, board_lib = job
-    from helical_sil import sim
-    from helical_sil.board import BoardError
-    from helical_sil.metrics import evaluate, run_metrics
-    from helical_sil.scenario import load_scenario
+    from helical_sil.analysis.metrics import evaluate, run_metrics
+    from helical_sil.config.scenario import load_scenario
+    from helical_sil.sim import lockstep
+    from helical_sil.sim.board import BoardError
     sc = load_scenario(scenario)
     sc.gains.update(gains)
     try:
-        res = sim.run(sc, board_lib)
-    except (BoardError, sim.SimError) as e:
+        res = lockstep.run(sc, board_lib)
+    except (BoardError, lockstep.SimError) as e:
         return Flight(gains, FAIL_COST, {}, str(e))
     m = run_metrics(res)
     if res.end_reason is not None:
@@ -206,7 +206,7 @@ def tune(aircraft_file: Path, out: Path, trials: int, seed: int, jobs: int, back
     report (report.md, search.png, result.json) and the tuned aircraft file."""
     import optuna
 
-    from helical_sil.backend import map_ordered
+    from helical_sil.campaigns.backend import map_ordered
     ac = load_aircraft(aircraft_file.stem, [aircraft_file.parent], aircraft_file)
     out.mkdir(parents=True, exist_ok=True)
     (out / "aircraft").mkdir(exist_ok=True)

@@ -1,5 +1,5 @@
 """Sensor-level SIL: the IMU, GPS, pitot and baro a board would read, made from
-JSBSim's state (sensor_truth.py gives the ideal values) plus seeded errors.
+JSBSim's state (truth.py gives the ideal values) plus seeded errors.
 
 Outputs are in the units of the firmware's estimator (include/helical/estimator/dcm.h):
 
@@ -19,7 +19,7 @@ Outputs are in the units of the firmware's estimator (include/helical/estimator/
   the speed through the air: the law's target bank tan(phi) = omega V / g and
   the estimator's centripetal term omega x v; a board gets it from the
   differential pressure and the static pressure and temperature (here the
-  density is JSBSim's, exact). It is also what sim.py feeds the board today.
+  density is JSBSim's, exact). It is also what sim/lockstep.py feeds the board today.
 - Baro (``BaroSample``): static pressure with noise and drift -> ISA pressure
   altitude (m) for the configured QNH (101325 Pa: altitude above sea level in
   JSBSim's standard atmosphere).
@@ -31,7 +31,7 @@ numbers whatever the configuration, so switching one error or one sensor off
 never changes another's noise. Same seed -> identical samples.
 
 The configuration (typical MEMS-grade defaults, the source of each) is in
-sensor_config.py and sil/README.md ("Sensor models").
+config.py and sil/README.md ("Sensor models").
 """
 
 from __future__ import annotations
@@ -43,11 +43,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from helical_sil import sensor_truth as st
-from helical_sil.sensor_config import (  # re-exported: the module's API
+from helical_sil.sensors import truth as st
+from helical_sil.sensors.config import (  # re-exported: the module's API
     AccelConfig, BaroConfig, GpsConfig, GyroConfig, ImuConfig, PitotConfig, SensorConfig,
     config_from_dict)
-from helical_sil.sensor_truth import FdmState, read_fdm_state  # re-exported
+from helical_sil.sensors.truth import FdmState, read_fdm_state  # re-exported
 
 __all__ = [
     "AccelConfig", "BaroConfig", "BaroSample", "FdmState", "GpsConfig", "GpsSample",

@@ -32,13 +32,13 @@ from typing import Any, Callable, Iterator
 
 import numpy as np
 
-from helical_sil import frames
-from helical_sil import scenario as scn
-from helical_sil import sensors as sensors_mod
-from helical_sil import sim
-from helical_sil.board import Board
-from helical_sil.faults import SensorFaults
-from helical_sil.scenario import ModesConfig, Scenario
+from helical_sil.config import scenario as scn
+from helical_sil.config.scenario import ModesConfig, Scenario
+from helical_sil.sensors import frames
+from helical_sil.sensors import models as sensors_mod
+from helical_sil.sim import lockstep
+from helical_sil.sim.board import Board
+from helical_sil.sim.faults import SensorFaults
 
 FT = frames.FT
 MODES = tuple(scn.MODE_PULSES_US)  # manual, fbw, waypoint, rth
@@ -172,14 +172,14 @@ def default_mode(sc: Scenario) -> str:
     if sc.modes is not None:
         for e in sc.modes.rc:
             if e.mode_us is not None:
-                return sim.mode_of_pulse(e.mode_us)
+                return lockstep.mode_of_pulse(e.mode_us)
     return "fbw"
 
 
 @dataclass
 class Flight:
     """JSBSim and the board, one control step at a time (the lockstep of
-    sim.run without its log): the firmware flies the scenario's aircraft on
+    lockstep.run without its log): the firmware flies the scenario's aircraft on
     its estimate (or the truth, as the scenario says) in its flight modes."""
     sc: Scenario
     board_lib: str | None = None
@@ -194,15 +194,15 @@ class Flight:
         self.sc = sc
         if self.mode not in MODES:
             raise ServeError(f"--mode {self.mode!r}: one of {', '.join(MODES)}")
-        self.fdm = sim.make_fdm(sc)
+        self.fdm = lockstep.make_fdm(sc)
         fdm = self.fdm
         self.n_engines = fdm.get_propulsion().get_num_engines()
         ail, elev, rud = frames.surfaces_from_jsbsim(
             fdm["fcs/aileron-cmd-norm"], fdm["fcs/elevator-cmd-norm"], fdm["fcs/rudder-cmd-norm"])
         self.trims = {"aileron": float(ail), "elevator": float(elev), "rudder": float(rud),
                       "throttle": float(fdm["fcs/throttle-cmd-norm[0]"])}
-        cfg: dict[str, Any] = dict(sim.board_config(sc, self.trims))
-        cfg.update(sim.modes_board_config(sc))
+        cfg: dict[str, Any] = dict(lockstep.board_config(sc, self.trims))
+        cfg.update(lockstep.modes_board_config(sc))
         cfg["link_sysid"] = self.sysid
         self.board_config = cfg
         self.board = Board(cfg, self.board_lib)
@@ -211,7 +211,7 @@ class Flight:
         self._imu_bias = bias if sc.gyro_bias_rad_s > 0.0 else np.zeros(3)
         self._imu_rng = np.random.Generator(np.random.PCG64([sc.seed, 0x1A1]))
         self._faults = SensorFaults(sc)
-        self._model = sim.sensor_model(sc)
+        self._model = lockstep.sensor_model(sc)
         self._n_sub = sc.sim_rate_hz // sc.control_rate_hz
         self.dt_s = 1.0 / sc.control_rate_hz
         self._imu_batch = [self._model.imu(sensors_mod.read_fdm_state(fdm), 0.0)] * self._n_sub
@@ -220,7 +220,7 @@ class Flight:
         self._steady_wind = any(w != 0.0 for w in (sc.wind_north_m_s, sc.wind_east_m_s,
                                                    sc.wind_down_m_s))
         # the steady transmitter: sticks centred, throttle at the trim
-        rc = sim.RcState(mode_us=scn.MODE_PULSES_US[self.mode],
+        rc = lockstep.RcState(mode_us=scn.MODE_PULSES_US[self.mode],
                          throttle_us=int(round(1000 + 1000 * self.trims["throttle"])))
         cmd = self.board.command
         for i, us in enumerate(rc.pulses()):
@@ -236,7 +236,7 @@ class Flight:
 
     def step(self) -> Any:
         """One control step: the sensors of now into the board, its servos into
-        JSBSim, JSBSim to the next step. Raises sim.SimError at ground contact."""
+        JSBSim, JSBSim to the next step. Raises lockstep.SimError at ground contact."""
         sc, fdm, b = self.sc, self.fdm, self.board
         t = self.t_s
         sens = b.sensors
@@ -256,7 +256,7 @@ class Flight:
         sens.heading_rad = psi
         sens.use_truth = int(sc.attitude_source == "truth")
         sens.align_to_truth = int(self.k == 0)
-        sim._raw_sensors(sc, sens, self._model, sensors_mod.read_fdm_state(fdm), t,
+        lockstep._raw_sensors(sc, sens, self._model, sensors_mod.read_fdm_state(fdm), t,
                          self._imu_batch, self._imu_fifo, self._faults, self._imu_bias,
                          self._imu_rng)
         a = b.step()
@@ -267,27 +267,28 @@ class Flight:
         for e in range(self.n_engines):
             fdm[f"fcs/throttle-cmd-norm[{e}]"] = a.throttle
         if self._steady_wind:
-            ramp = min(1.0, (t + self.dt_s) / sim.WIND_RAMP_S)
+            ramp = min(1.0, (t + self.dt_s) / lockstep.WIND_RAMP_S)
             fdm["atmosphere/wind-north-fps"] = ramp * sc.wind_north_m_s / FT
             fdm["atmosphere/wind-east-fps"] = ramp * sc.wind_east_m_s / FT
             fdm["atmosphere/wind-down-fps"] = ramp * sc.wind_down_m_s / FT
         batch = []
         for j in range(self._n_sub):
             if not fdm.run():
-                raise sim.SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
+                raise lockstep.SimError(
+                    f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
             try:
                 batch.append(self._model.imu(sensors_mod.read_fdm_state(fdm),
                                              t + (j + 1) / sc.sim_rate_hz))
             except ValueError as e:
-                raise sim.SimError(f"JSBSim's state is not finite at t = "
+                raise lockstep.SimError(f"JSBSim's state is not finite at t = "
                                    f"{fdm['simulation/sim-time-sec']:.2f} s: {e}") from None
         self._imu_batch = batch
         self._north += vn * self.dt_s
         self._east += ve * self.dt_s
         self.k += 1
         agl = fdm["position/h-agl-ft"] * FT
-        if agl < sim.GROUND_CONTACT_M:
-            raise sim.SimError(f"ground contact at t = {self.t_s:.2f} s")
+        if agl < lockstep.GROUND_CONTACT_M:
+            raise lockstep.SimError(f"ground contact at t = {self.t_s:.2f} s")
         return a
 
 
@@ -366,7 +367,7 @@ def serve(flight: Flight, link: UdpLink, speed: float, duration_s: float | None,
             pump()
             try:
                 flight.step()
-            except sim.SimError as e:
+            except lockstep.SimError as e:
                 end = str(e)
                 break
             pump()
@@ -406,7 +407,7 @@ def run_serve(scenario_path: Path, endpoint: str, speed: float, duration_s: floa
     chosen = mode if mode is not None else default_mode(sc)
     link = UdpLink(ep)
     try:
-        with sim._quiet_stdout():
+        with lockstep._quiet_stdout():
             flight = Flight(sc, board_lib, chosen, sysid)
 
         def started() -> None:

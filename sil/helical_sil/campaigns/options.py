@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
-from helical_sil import params
+from helical_sil.config import params
 
 # The options: (name, where the row lives, the value that turns it on by default).
 # turn_trim is item 3 (a guidance row, on by default in the firmware);
@@ -165,10 +165,11 @@ def _turn_segments(m: dict[str, Any]) -> list[dict[str, Any]]:
 
 def fly(job: Job) -> dict[str, Any]:
     """One flight; returns its metrics (segments and run) or the error."""
-    from helical_sil import sim, tune
-    from helical_sil.board import BoardError
-    from helical_sil.metrics import run_metrics
-    from helical_sil.scenario import load_scenario
+    from helical_sil.analysis.metrics import run_metrics
+    from helical_sil.campaigns import tune
+    from helical_sil.config.scenario import load_scenario
+    from helical_sil.sim import lockstep
+    from helical_sil.sim.board import BoardError
     sc = load_scenario(job.scenario)
     apply_overrides(sc, job.overrides)
     if job.gain_scale != 1.0:
@@ -176,13 +177,13 @@ def fly(job: Job) -> dict[str, Any]:
             sc.gains[k] = min(sc.gains[k] * job.gain_scale, params.LAW_BY_NAME[k].max)
     try:
         try:
-            res = sim.run(sc, job.board_lib)
-        except sim.SimError as e:
+            res = lockstep.run(sc, job.board_lib)
+        except lockstep.SimError as e:
             if "trim failed" not in str(e).lower() or not sc.trim:
                 raise
             sc.trim = False  # as tune.py: a model JSBSim cannot trim flies released
-            res = sim.run(sc, job.board_lib)
-    except (BoardError, sim.SimError, ValueError) as e:
+            res = lockstep.run(sc, job.board_lib)
+    except (BoardError, lockstep.SimError, ValueError) as e:
         return {"error": str(e)}
     m = run_metrics(res)
     m["trimmed"] = sc.trim
@@ -192,18 +193,19 @@ def fly(job: Job) -> dict[str, Any]:
 def limit_job(job: tuple[str, str | None]) -> dict[str, Any]:
     """The full-aileron roll of a scenario's aircraft at its initial
     condition, as lists (picklable)."""
-    from helical_sil import roll_limit, sim
-    from helical_sil.scenario import load_scenario
+    from helical_sil.campaigns import roll_limit
+    from helical_sil.config.scenario import load_scenario
+    from helical_sil.sim import lockstep
     sc = load_scenario(job[0])
     try:
         try:
             fa = roll_limit.measure(sc)
-        except sim.SimError as e:
+        except lockstep.SimError as e:
             if "trim failed" not in str(e).lower():
                 raise
             sc.trim = False
             fa = roll_limit.measure(sc)
-    except (sim.SimError, ValueError) as e:
+    except (lockstep.SimError, ValueError) as e:
         return {"error": str(e)}
     return {"t_s": fa.t_s.tolist(), "right": fa.phi_right_deg.tolist(),
             "left": fa.phi_left_deg.tolist(), "airspeed_m_s": fa.airspeed_m_s,
@@ -213,7 +215,7 @@ def limit_job(job: tuple[str, str | None]) -> dict[str, Any]:
 def limit_of(d: dict[str, Any]) -> Any:
     import numpy as np
 
-    from helical_sil.roll_limit import FullAileron
+    from helical_sil.campaigns.roll_limit import FullAileron
     return FullAileron(np.asarray(d["t_s"]), np.asarray(d["right"]), np.asarray(d["left"]),
                        d["airspeed_m_s"], d["trimmed"])
 
@@ -467,7 +469,7 @@ class Campaign:
 def run(c: Campaign, out: Path, jobs: int, board_lib: str | None, backend: str = "local",
         address: str | None = None, title: str = "Law options", command: str = "",
         progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
-    from helical_sil.backend import map_ordered
+    from helical_sil.campaigns.backend import map_ordered
     opts = available_options()
     vs = variants(c.on_values, c.combo, c.base, opts)
     limits = map_ordered(limit_job, [(p, board_lib) for p in c.rows.values()], jobs=jobs,
@@ -526,8 +528,8 @@ def manoeuvre_rows(aircraft_files: list[Path], out: Path, altitude_m: float | No
     """The standard manoeuvres (tune.manoeuvres_toml: a 30-deg-bank turn each
     way at v_ref) for each aircraft file, written to out/manoeuvres/NAME/
     with the aircraft file beside it; row name = the aircraft's name."""
-    from helical_sil import tune
-    from helical_sil.scenario import load_aircraft
+    from helical_sil.campaigns import tune
+    from helical_sil.config.scenario import load_aircraft
     rows = {}
     for f in aircraft_files:
         name = f.stem.removesuffix("_tuned")

@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from helical_sil import params
-from helical_sil import sensors as sensors_mod
+from helical_sil.config import params
+from helical_sil.sensors import config as sensor_config
 
-SIL_DIR = Path(__file__).resolve().parents[1]
+SIL_DIR = Path(__file__).resolve().parents[2]
 DEFAULT_AIRCRAFT_DIR = SIL_DIR / "scenarios" / "aircraft"
 
 # The law's rows of the parameter table (include/helical/params.def), by its
@@ -749,7 +749,7 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
                               ATTITUDE_SOURCES)
     sc.sensor_model = _table(src, "sensor_model", doc.get("sensor_model", {}))
     try:  # the sensor model names a bad key itself
-        sensors_mod.config_from_dict(sc.sensor_model)
+        sensor_config.config_from_dict(sc.sensor_model)
     except ValueError as e:
         raise ScenarioError(f"{src}: [sensor_model] {e}") from None
     est = _table(src, "estimator", doc.get("estimator", {}))

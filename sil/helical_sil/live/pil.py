@@ -1,7 +1,7 @@
 """Processor-in-the-loop: the STM32F405 firmware image flies JSBSim under QEMU.
 
 `run ... --target pil` flies a scenario exactly as the SIL does (the same
-lockstep loop of sim.py), except that each control step is computed by the
+lockstep loop of sim/lockstep.py), except that each control step is computed by the
 HIL firmware image (`ht_stm32f4_hil.elf`, firmware/hil/hil_main.c) running
 in `qemu-system-arm -M netduinoplus2`: the host converts the raw sensor
 samples, the truth solution and the command into the firmware's fixed-point
@@ -39,8 +39,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterator
 
-from helical_sil import params, sim
-from helical_sil.board import Board, BoardError, SilActuators, table_values
+from helical_sil.config import params
+from helical_sil.sim import lockstep
+from helical_sil.sim.board import Board, BoardError, SilActuators, table_values
 
 # --- the protocol (docs/hil-protocol.md) -------------------------------------
 
@@ -81,9 +82,9 @@ ST_CONTROL_RAN, ST_FAILSAFE, ST_GUARD_ENGAGED = 0x01, 0x02, 0x04
 OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE = 1, 3, 4, 5
 SIL_CHANNELS = (OS_FN_AILERON, OS_FN_ELEVATOR, OS_FN_RUDDER, OS_FN_THROTTLE)
 
-_SIM_RUN = sim.run  # the SIL loop itself, also while as_sim_target() has replaced sim.run
+_SIM_RUN = lockstep.run  # the SIL loop itself, also while as_sim_target() has replaced lockstep.run
 
-DEFAULT_ELF = (Path(__file__).resolve().parents[2] / "build" / "stm32f4" / "boards" / "stm32f4"
+DEFAULT_ELF = (Path(__file__).resolve().parents[3] / "build" / "stm32f4" / "boards" / "stm32f4"
                / "ht_stm32f4_hil.elf")
 
 
@@ -246,7 +247,7 @@ def output_channels(config: dict[str, Any]) -> list[dict[str, int]]:
 
 
 def config_frames(config: dict[str, Any]) -> list[bytes]:
-    """CFG_LAW, CFG_ALT, CFG_SPD, CFG_OUT, CFG_EST for a board config (sim.board_config)."""
+    """CFG_LAW, CFG_ALT, CFG_SPD, CFG_OUT, CFG_EST for a board config (lockstep.board_config)."""
     c = config
     rate = int(c["control_rate_hz"])
     law = cfg_law_payload(c)
@@ -702,7 +703,7 @@ class PilBoard:
 
 @dataclass
 class PilResult:
-    result: sim.RunResult
+    result: lockstep.RunResult
     stats: PilStats
     frames: int
     link_s: float
@@ -729,18 +730,18 @@ class PilResult:
 
 @contextlib.contextmanager
 def board_factory(target: Target, stats: PilStats) -> Iterator[None]:
-    """sim.run builds its board with sim.Board(config, lib); for the duration
+    """lockstep.run builds its board with lockstep.Board(config, lib); for the duration
     of this block that is a PilBoard on `target`."""
-    saved = sim.Board
+    saved = lockstep.Board
 
     def make(config: dict[str, Any], lib_path: str | None = None) -> PilBoard:
         return PilBoard(config, lib_path, target, stats)
 
-    sim.Board = make  # type: ignore[assignment,misc]
+    lockstep.Board = make  # type: ignore[assignment,misc]
     try:
         yield
     finally:
-        sim.Board = saved  # type: ignore[misc]
+        lockstep.Board = saved  # type: ignore[misc]
 
 
 def run(sc: Any, board_lib: str | None = None, elf: str | None = None,
@@ -761,21 +762,21 @@ def run(sc: Any, board_lib: str | None = None, elf: str | None = None,
 
 @contextlib.contextmanager
 def as_sim_target(elf: str | None = None, timeout_s: float = 5.0) -> Iterator[list[PilResult]]:
-    """For the CLI: within this block sim.run flies the firmware (pil.run);
+    """For the CLI: within this block lockstep.run flies the firmware (pil.run);
     the PilResult of each run is appended to the yielded list."""
-    saved = sim.run
+    saved = lockstep.run
     results: list[PilResult] = []
 
-    def pil_run(sc: Any, board_lib: str | None = None) -> sim.RunResult:
+    def pil_run(sc: Any, board_lib: str | None = None) -> lockstep.RunResult:
         r = run(sc, board_lib, elf, timeout_s)
         results.append(r)
         return r.result
 
-    sim.run = pil_run  # type: ignore[assignment]
+    lockstep.run = pil_run  # type: ignore[assignment]
     try:
         yield results
     finally:
-        sim.run = saved  # type: ignore[assignment]
+        lockstep.run = saved  # type: ignore[assignment]
 
 
 def report(r: PilResult, out: Path) -> int:

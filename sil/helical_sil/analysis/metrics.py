@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from helical_sil.frames import wrap_deg
-from helical_sil.scenario import PassCriterion
-from helical_sil.sim import G, RunResult, Segment
+from helical_sil.config.scenario import PassCriterion
+from helical_sil.sensors.frames import wrap_deg
+from helical_sil.sim.lockstep import G, RunResult, Segment
 
 SAT_LEVEL = 0.999
 TURN_CHANGE_MIN_DEG_S = 1.0
@@ -429,7 +429,7 @@ def bank_entry_s(ts: np.ndarray, phi_deg: np.ndarray, target_deg: float,
     """Time (ts: from the command) until the bank first covers `fraction` of the
     change from its first value to target_deg (wrapped, so a roll through
     +-180 counts the short way); None if it never does. The law's side of the
-    full-aileron comparison (roll_limit.py measures the aileron's side with
+    full-aileron comparison (campaigns/roll_limit.py measures the aileron's side with
     the same definition)."""
     if ts.size == 0:
         return None

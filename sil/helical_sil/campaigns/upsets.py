@@ -38,8 +38,9 @@ from typing import Any
 
 import numpy as np
 
-from helical_sil.backend import map_ordered
-from helical_sil.scenario import DEFAULT_AIRCRAFT_DIR, Upset, load_aircraft
+from helical_sil.campaigns.backend import map_ordered
+from helical_sil.campaigns.runner import progress_bar, run_one
+from helical_sil.config.scenario import DEFAULT_AIRCRAFT_DIR, Upset, load_aircraft
 
 # Calibrated airspeed range (m/s) of the upsets: just above the clean stall to
 # a little above cruise. c172p: stall about 48 KCAS (24.7 m/s) clean -> 26 m/s;
@@ -142,7 +143,7 @@ def overrides_toml(overrides: dict[str, float] | None) -> str:
     """[gains] and [guidance] tables of law / guidance rows (the campaign's --set)."""
     if not overrides:
         return ""
-    from helical_sil.options import row_of
+    from helical_sil.campaigns.options import row_of
     law = {k: v for k, v in overrides.items() if row_of(k)[0] == "law"}
     gd = {k: v for k, v in overrides.items() if row_of(k)[0] == "guidance"}
     text = ""
@@ -204,7 +205,6 @@ min = {floor_m:g}
 
 
 def _fly(job: tuple[str, str, str | None, bool]) -> dict[str, Any]:
-    from helical_sil.cli import run_one
     path, out, board_lib, plots = job
     return run_one(Path(path), Path(out), board_lib, plots=plots)
 
@@ -314,7 +314,6 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
     defect: still failures in every table and fraction, but they do not count
     against the exit status; one of them passing does (strict: remove it).
     Returns (number of unexpected results, the summary table)."""
-    from helical_sil.cli import _progress
     jobs_list: list[tuple[str, str, str | None, bool]] = []
     meta: list[tuple[int, str, Upset, Path]] = []
     for ac in aircraft:
@@ -330,10 +329,10 @@ def run_campaign(aircraft: list[str], count: int, seed: int, out: Path,
     n = len(jobs_list)
     results: list[UpsetResult] = []
     t0 = time.perf_counter()
-    _progress(0, n, "upsets", t0)
+    progress_bar(0, n, "upsets", t0)
     # local processes or Ray (backend.py): the results in the upsets' order
     ms = map_ordered(_fly, jobs_list, jobs=jobs, backend=backend, address=address,
-                     progress=lambda k, _m: _progress(k, n, f"upsets ({backend})", t0))
+                     progress=lambda k, _m: progress_bar(k, n, f"upsets ({backend})", t0))
     known_set = set(known_failures or ())
     for (i, ac, up, p), m in zip(meta, ms):
         results.append(_result(i, ac, up, m, p, altitude_m))
