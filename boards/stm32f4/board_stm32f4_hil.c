@@ -7,7 +7,7 @@
  * timers' compare registers. In QEMU's netduinoplus2, -serial #0 is this USART.
  */
 #include "board_stm32f4.h"
-#include "hil/hil_fw.h"
+#include "hil/hil_link.h"
 #include "stm32f4_gpio.h"
 #include "stm32f4_regs.h"
 #include "stm32f4_usart.h"

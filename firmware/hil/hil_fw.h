@@ -16,7 +16,7 @@
  * on the host).
  *
  * Portable: the protocol and the step use only board.h plus the link
- * functions below, which the HIL image's board file provides. All state is
+ * functions of hil_link.h, which the HIL image's board file provides. All state is
  * in the caller's hil_fw_t.
  */
 #ifndef HT_HIL_FW_H
@@ -28,6 +28,7 @@
 #include "fw_step.h"
 #include "helical/board.h"
 #include "helical/protocols/hil_frame.h"
+#include "hil/hil_link.h"
 
 #define HIL_PROTOCOL_VERSION                                                                       \
     8u /* 3: raw sensor samples, CFG_EST, STATE; 4: CFG_EST gps_latency_ms;                        \
@@ -168,18 +169,6 @@ typedef struct {
     uint8_t frame[HIL_FRAME_MAX];
     uint8_t payload[HIL_PAYLOAD_MAX];
 } hil_fw_t;
-
-/* --- provided by the HIL image's board file ------------------------------ */
-/* Bring the link up (after board_init); 0 if it did not come up. */
-int hil_link_init(void);
-/* One received byte, if any (never waits): 1 and *byte, or 0. */
-int hil_link_poll(uint8_t *byte);
-/* Send bytes on the link (blocking, bounded). */
-void hil_link_send(const uint8_t *data, size_t n);
-/* The pulse a servo output is producing, read back from the hardware (us). */
-uint16_t hil_servo_readback_us(uint8_t channel);
-/* The link's receive error count (overrun, framing, noise, parity). */
-uint16_t hil_link_errors(void);
 
 /* --- the firmware side ---------------------------------------------------- */
 void hil_fw_init(hil_fw_t *h);
