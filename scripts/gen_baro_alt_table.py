@@ -39,7 +39,7 @@ def main() -> None:
     out.append(" * ISA pressure altitude (ICAO Doc 7488 troposphere) in cm at")
     out.append(f" * p = {BASE_PA} + {STEP_PA} * i Pa, i = 0..{NODES - 1}, rounded to the nearest cm.")
     out.append(" */")
-    out.append('#include "baro_altitude.h"')
+    out.append('#include "baro_altitude_table.h"')
     out.append("")
     out.append("/* clang-format off */")
     out.append("const int32_t baro_alt_table_cm[BARO_ALT_TABLE_NODES] = {")

@@ -19,17 +19,14 @@
 
 #include <stdint.h>
 
-#define BARO_ALT_TABLE_BASE_PA  30000u
-#define BARO_ALT_TABLE_STEP_PA  256u /* a power of two: the index is a shift in Q24.8 */
-#define BARO_ALT_TABLE_NODES    314u /* up to 30000 + 313 * 256 = 110128 Pa */
+#include "baro_altitude_table.h"
+
 #define BARO_ALT_ERROR_BOUND_CM 6
 
 /* Pressure limits in the BMP280's Q24.8 Pa (value / 256 = Pa). */
 #define BARO_ALT_P_MIN_Q8 (BARO_ALT_TABLE_BASE_PA * 256u)
 #define BARO_ALT_P_MAX_Q8                                                                          \
     ((BARO_ALT_TABLE_BASE_PA + (BARO_ALT_TABLE_NODES - 1u) * BARO_ALT_TABLE_STEP_PA) * 256u)
-
-extern const int32_t baro_alt_table_cm[BARO_ALT_TABLE_NODES];
 
 /*
  * ISA pressure altitude in cm for a pressure in Q24.8 Pa. Outside

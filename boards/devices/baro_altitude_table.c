@@ -3,7 +3,7 @@
  * ISA pressure altitude (ICAO Doc 7488 troposphere) in cm at
  * p = 30000 + 256 * i Pa, i = 0..313, rounded to the nearest cm.
  */
-#include "baro_altitude.h"
+#include "baro_altitude_table.h"
 
 /* clang-format off */
 const int32_t baro_alt_table_cm[BARO_ALT_TABLE_NODES] = {

@@ -1,6 +1,6 @@
 /*
  * icm42688p.h - the TDK InvenSense ICM-42688-P on SPI: bank-0 registers and
- * the driver's steps (imu_spi.h calls them; tests call them directly).
+ * the driver's steps (imu_spi.c calls them; tests call them directly).
  *
  * Source: ICM-42688-P datasheet DS-000347 rev 1.x: section 3 (table 1 gyro:
  * 16.4 LSB per deg/s at +/-2000, table 2 accel: 2048 LSB/g at +/-16 g), the SPI
@@ -13,9 +13,9 @@
 
 #include <stdint.h>
 
-#include "imu_spi.h"
+#include "imu_spi_bus.h"
 
-#define ICM42688P_WHO_AM_I_VALUE 0x47u
+/* ICM42688P_WHO_AM_I_VALUE: imu_spi_bus.h (imu_spi_detect names the chip by it). */
 
 /* Bank-0 registers (DS section 13) */
 #define ICM42688P_DEVICE_CONFIG      0x11u /* SOFT_RESET_CONFIG bit 0 */
@@ -61,7 +61,7 @@
 #define ICM42688P_BURST_BYTES      14u
 
 /* GYRO_ACCEL_CONFIG0 for an imu_lpf_t (the same bandwidth code in both
- * nibbles, table in imu_spi.h); 0xFF when out of range. */
+ * nibbles, table in imu_spi_bus.h); 0xFF when out of range. */
 uint8_t icm42688p_filter_bw(uint8_t lpf);
 
 /* WHO_AM_I at 1 MHz: IMU_OK for 0x47, else as imu_spi_detect. */

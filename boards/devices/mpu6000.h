@@ -1,6 +1,6 @@
 /*
  * mpu6000.h - the InvenSense MPU-6000 on SPI: registers and the driver's
- * steps (imu_spi.h calls them; tests call them directly).
+ * steps (imu_spi.c calls them; tests call them directly).
  *
  * Sources: "MPU-6000 and MPU-6050 Register Map and Descriptions" RM-MPU-6000A-00
  * rev 4.2 (section 3 register map, sections 4.x per register, reset values in
@@ -14,9 +14,9 @@
 
 #include <stdint.h>
 
-#include "imu_spi.h"
+#include "imu_spi_bus.h"
 
-#define MPU6000_WHO_AM_I_VALUE 0x68u
+/* MPU6000_WHO_AM_I_VALUE: imu_spi_bus.h (imu_spi_detect names the chip by it). */
 
 /* Registers (RM section 3, register map) */
 #define MPU6000_SMPLRT_DIV        0x19u /* sample rate = gyro output rate / (1 + div) */
@@ -55,7 +55,7 @@
 #define MPU6000_STARTUP_WAIT_US 30000u
 #define MPU6000_BURST_BYTES     14u
 
-/* DLPF_CFG for an imu_lpf_t (table in imu_spi.h); 0xFF when out of range. */
+/* DLPF_CFG for an imu_lpf_t (table in imu_spi_bus.h); 0xFF when out of range. */
 uint8_t mpu6000_dlpf_cfg(uint8_t lpf);
 
 /* WHO_AM_I at 1 MHz: IMU_OK for 0x68, else as imu_spi_detect. */

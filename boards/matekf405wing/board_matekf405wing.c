@@ -3,7 +3,8 @@
  * 168 MHz from the 8 MHz crystal (16 MHz HSI when it does not start), a
  * 1 kHz SysTick time base, eight servo outputs S1..S8 on TIM4/TIM3/TIM8/TIM12,
  * LED and beeper. The sensors and the receiver are their own files
- * (matek_sensors.c, matek_rc.c); the pins are matekf405wing_pins.h.
+ * (matek_sensors.c, matek_rc.c), and so are the clocks, the time base and
+ * the pin helpers they share (matek_hw.c); the pins are matekf405wing_pins.h.
  *
  * The control tick (board_wait_tick) is paced by the time base: one tick
  * every 1000 / control_hz ms (5 ms at the firmware's 200 Hz IMU rate). While
@@ -18,170 +19,24 @@
 #include "helical/board.h"
 
 #include "matek_board.h"
+#include "matek_console.h"
+#include "matek_hw.h"
+#include "matek_params_boot.h"
+#include "matek_rc.h"
+#include "matek_sensors.h"
 #include "matekf405wing_pins.h"
 #include "stm32f4_pwm_map.h"
 #include "stm32f4_regs.h"
-#include "stm32f4_systick.h"
 
 #include <stddef.h>
 
-#define TIMEBASE_HZ     1000u
 #define HEARTBEAT_TICKS 400u /* 2 s at 200 Hz */
-#define NVIC_ISER_BASE  0xE000E100u
 
-static stm32_clocks_t clocks;
 static stm32_pwm_map_t servos;
-static volatile uint32_t ms_count; /* written by SysTick_Handler only */
-static uint32_t systick_load;
 static uint32_t next_tick_ms, tick_frac;
 static uint16_t tick_ms_whole, tick_hz;
 static uint32_t ticks, late_total;
 static uint8_t failsafe_now;
-/* Tick budget, in SysTick counts (= HCLK cycles on the board; see
- * matek_cycles): the worst time from board_rc_read_us's return to the next
- * board_wait_tick (the firmware step and the pulses), and of the board's
- * own reads (board_sensors_read + board_rc_read_us) in one tick. */
-static uint32_t cyc_rc_out, cyc_io_start, cyc_io, step_max_cyc, io_max_cyc;
-
-/* Named by the vector table (startup_stm32f405.c), which declares it weak. */
-void SysTick_Handler(void);
-void SysTick_Handler(void)
-{
-    ms_count = ms_count + 1u;
-}
-
-const stm32_clocks_t *matek_clocks(void)
-{
-    return &clocks;
-}
-
-uint32_t matek_time_ms(void)
-{
-    return ms_count;
-}
-
-/*
- * The time base's two parts: whole ms (the interrupt's count) and SysTick
- * counts into the current ms. ms, then the counter, then ms again: equal ms
- * means the interrupt did not run in between. The counter may still have
- * wrapped with its interrupt not yet taken (a few cycles' window): then the
- * SysTick exception is pending (ICSR.PENDSTSET, ARMv7-M B3.2.4) and the
- * counter has just reloaded (above half the period), so the ms is one more.
- */
-#define SCB_ICSR_ADDR      0xE000ED04u
-#define SCB_ICSR_PENDSTSET 0x04000000u /* bit 26 */
-static void time_parts(uint32_t *ms, uint32_t *sub)
-{
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SysTick register block address
-    const stm32_systick_t *const st = (const stm32_systick_t *)STM32_SYSTICK_BASE;
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SCB ICSR register address
-    const volatile uint32_t *const icsr = (const volatile uint32_t *)SCB_ICSR_ADDR;
-    for (unsigned tries = 0u; tries < 3u; ++tries) {
-        const uint32_t m1 = ms_count;
-        const uint32_t val = st->VAL & SYSTICK_LOAD_MAX;
-        const uint32_t pending = *icsr & SCB_ICSR_PENDSTSET;
-        const uint32_t m2 = ms_count;
-        if (m1 == m2 && val <= systick_load) {
-            const uint32_t wrapped = (pending != 0u && val > systick_load / 2u) ? 1u : 0u;
-            *ms = m1 + wrapped;
-            *sub = systick_load - val;
-            return;
-        }
-    }
-    *ms = ms_count;
-    *sub = 0u;
-}
-
-uint32_t matek_time_us(void)
-{
-    const uint32_t per_us = clocks.hclk_hz / 1000000u;
-    uint32_t ms = 0u;
-    uint32_t sub = 0u;
-    time_parts(&ms, &sub);
-    return ms * 1000u + ((per_us != 0u) ? (sub / per_us) : 0u);
-}
-
-uint32_t matek_cycles(void)
-{
-    uint32_t ms = 0u;
-    uint32_t sub = 0u;
-    time_parts(&ms, &sub);
-    return ms * (systick_load + 1u) + sub;
-}
-
-void matek_budget_mark(uint8_t where)
-{
-    const uint32_t now = matek_cycles();
-    if (where == MATEK_MARK_SENSORS_IN) {
-        cyc_io_start = now;
-        cyc_io = 0u;
-    } else if (where == MATEK_MARK_SENSORS_OUT) {
-        cyc_io = now - cyc_io_start;
-    } else if (where == MATEK_MARK_RC_IN) {
-        cyc_io_start = now;
-    } else {
-        cyc_io += now - cyc_io_start;
-        cyc_rc_out = now;
-        /* a "negative" span is a time-base glitch (an emulator's late
-         * SysTick interrupt): not a measurement */
-        if (cyc_io < 0x80000000u && cyc_io > io_max_cyc) {
-            io_max_cyc = cyc_io;
-        }
-    }
-}
-
-void matek_delay_us(void *ctx, uint32_t us)
-{
-    (void)ctx;
-    const uint32_t start = matek_time_us();
-    /* The cap bounds the wait even if the time base stopped: each loop is
-     * more than one core cycle. */
-    const uint32_t cap = us * (clocks.sysclk_hz / 1000000u);
-    for (uint32_t i = 0u; i < cap; ++i) {
-        if (matek_time_us() - start >= us) {
-            return;
-        }
-    }
-}
-
-void matek_nvic_enable(uint32_t irqn)
-{
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: NVIC ISER0..7 register address
-    volatile uint32_t *const iser = (volatile uint32_t *)NVIC_ISER_BASE;
-    iser[irqn / 32u] = (uint32_t)1u << (irqn % 32u);
-}
-
-stm32_gpio_t *matek_gpio(uint8_t port)
-{
-    static const uint32_t bases[3] = {STM32_GPIOA_BASE, STM32_GPIOB_BASE, STM32_GPIOC_BASE};
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: GPIOA..C register block addresses
-    return (stm32_gpio_t *)bases[(port < 3u) ? port : 0u];
-}
-
-void matek_pin_af(uint8_t port, uint8_t pin, uint8_t af, uint8_t open_drain)
-{
-    stm32_gpio_t *const g = matek_gpio(port);
-    const uint32_t bit = (uint32_t)1u << pin;
-    if (open_drain != 0u) {
-        /* RM0090 8.4.2 OTYPER (1 = open drain), 8.4.4 PUPDR (01 = pull-up) */
-        g->OTYPER |= bit;
-        g->PUPDR = (g->PUPDR & ~((uint32_t)3u << (2u * pin))) | ((uint32_t)1u << (2u * pin));
-    }
-    stm32_gpio_set_af(g, pin, af);
-}
-
-/* Every peripheral clock the image uses (RM0090 7.3.10, 7.3.13, 7.3.14). */
-static void clocks_enable(void)
-{
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: RCC register block address
-    stm32_rcc_t *const rcc = (stm32_rcc_t *)STM32_RCC_BASE;
-    rcc->AHB1ENR |= 0x7u; /* GPIOA, GPIOB, GPIOC */
-    /* TIM3 1, TIM4 2, TIM5 3, TIM12 6, USART2 17, USART3 18, UART4 19, I2C1 21, I2C2 22 */
-    rcc->APB1ENR |= 0x006E004Eu;
-    /* TIM8 1, USART1 4, USART6 5, SPI1 12, SYSCFG 14 */
-    rcc->APB2ENR |= 0x5032u;
-    (void)rcc->APB2ENR; /* the enables take effect before the first access */
-}
 
 static const uint8_t servo_port[MATEK_SERVOS] = {1u, 1u, 1u, 1u, 2u, 2u, 1u, 1u};
 static const uint8_t servo_pin[MATEK_SERVOS] = {MATEK_S1_PIN, MATEK_S2_PIN, MATEK_S3_PIN,
@@ -201,8 +56,8 @@ static int servos_init(const board_config_t *cfg)
     stm32_tim_t *const tim8 = (stm32_tim_t *)MATEK_TIM8_BASE;
     // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: TIM12 register block address
     stm32_tim_t *const tim12 = (stm32_tim_t *)MATEK_TIM12_BASE;
-    const uint32_t apb1 = clocks.tim_apb1_hz;
-    const uint32_t apb2 = clocks.tim_apb2_hz;
+    const uint32_t apb1 = matek_clocks()->tim_apb1_hz;
+    const uint32_t apb2 = matek_clocks()->tim_apb2_hz;
     const stm32_pwm_map_out_t map[MATEK_SERVOS] = {
         {tim4, apb1, 2u, 0u}, {tim4, apb1, 1u, 0u}, {tim3, apb1, 3u, 0u},  {tim3, apb1, 4u, 0u},
         {tim8, apb2, 3u, 1u}, {tim8, apb2, 4u, 1u}, {tim12, apb1, 1u, 0u}, {tim12, apb1, 2u, 0u}};
@@ -224,7 +79,8 @@ static void clock_report(void)
         "flash wait states refused: HSI 16 MHz", "PLL never locked: HSI 16 MHz",
         "switch to PLL not seen: HSI 16 MHz"};
     matek_console_puts("matekf405wing: clock ");
-    matek_console_puts(why[(clocks.source < 5u) ? clocks.source : 1u]);
+    const uint8_t source = matek_clocks()->source;
+    matek_console_puts(why[(source < 5u) ? source : 1u]);
     matek_console_puts("\r\n");
 }
 
@@ -268,23 +124,15 @@ static void indicators_init(void)
 
 board_status_t board_init(const board_config_t *cfg)
 {
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: RCC register block address
-    stm32_rcc_t *const rcc = (stm32_rcc_t *)STM32_RCC_BASE;
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: flash interface register block address
-    stm32_flash_regs_t *const flash = (stm32_flash_regs_t *)STM32_FLASH_REGS_BASE;
-    // cppcheck-suppress misra-c2012-11.4 ; D-11.4-REG: SysTick register block address
-    stm32_systick_t *const systick = (stm32_systick_t *)STM32_SYSTICK_BASE;
     const board_status_t st = board_config_check(cfg);
     if (st != BOARD_OK) {
         return st;
     }
-    stm32_clock_init(rcc, flash, MATEK_CLOCK_SPINS, &clocks);
-    clocks_enable();
-    /* The 1 kHz time base first: the sensors' start-up delays run on it. */
-    if (!stm32_systick_start(systick, clocks.hclk_hz, TIMEBASE_HZ)) {
+    /* The clocks and the 1 kHz time base first: the sensors' start-up delays
+     * run on it. */
+    if (matek_hw_start() == 0) {
         return BOARD_ERR_HW;
     }
-    systick_load = systick->LOAD & SYSTICK_LOAD_MAX;
     matek_console_init();
     clock_report();
     params_report();
@@ -306,9 +154,9 @@ board_status_t board_init(const board_config_t *cfg)
     matek_rc_init();
     matek_console_flush();
     tick_hz = cfg->control_hz;
-    tick_ms_whole = (uint16_t)(TIMEBASE_HZ / tick_hz);
+    tick_ms_whole = (uint16_t)(MATEK_TIMEBASE_HZ / tick_hz);
     tick_frac = 0u;
-    next_tick_ms = ms_count + tick_ms_whole;
+    next_tick_ms = matek_time_ms() + tick_ms_whole;
     return BOARD_OK;
 }
 
@@ -322,7 +170,7 @@ uint8_t board_servo_count(void)
 static void advance_tick(void)
 {
     next_tick_ms += tick_ms_whole;
-    tick_frac += TIMEBASE_HZ % tick_hz;
+    tick_frac += MATEK_TIMEBASE_HZ % tick_hz;
     if (tick_frac >= tick_hz) {
         tick_frac -= tick_hz;
         next_tick_ms += 1u;
@@ -341,9 +189,9 @@ static void heartbeat(void)
     matek_console_puts(" fs ");
     matek_console_put_u32(failsafe_now);
     matek_console_puts(" step_max_cyc ");
-    matek_console_put_u32(step_max_cyc);
+    matek_console_put_u32(matek_budget_step_max_cyc());
     matek_console_puts(" io_max_cyc ");
-    matek_console_put_u32(io_max_cyc);
+    matek_console_put_u32(matek_budget_io_max_cyc());
     matek_console_puts(" servo_us");
     for (uint8_t i = 0u; i < MATEK_SERVOS; ++i) {
         matek_console_puts(" ");
@@ -354,31 +202,26 @@ static void heartbeat(void)
 
 uint16_t board_wait_tick(void)
 {
-    if (cyc_rc_out != 0u) {
-        const uint32_t step = matek_cycles() - cyc_rc_out;
-        if (step < 0x80000000u && step > step_max_cyc) {
-            step_max_cyc = step;
-        }
-    }
+    matek_budget_tick();
     for (;;) {
         matek_sensors_poll();
         matek_rc_poll();
         matek_console_pump();
-        if ((int32_t)(ms_count - next_tick_ms) >= 0) {
+        if ((int32_t)(matek_time_ms() - next_tick_ms) >= 0) {
             break;
         }
         /* Sleep until an interrupt; masked, so one arriving between the check
          * and the WFI still ends it (ARMv7-M: WFI wakes on a pending
          * interrupt even while PRIMASK is set). */
         __asm__ volatile("cpsid i" ::: "memory");
-        if ((int32_t)(ms_count - next_tick_ms) < 0) {
+        if ((int32_t)(matek_time_ms() - next_tick_ms) < 0) {
             __asm__ volatile("wfi");
         }
         __asm__ volatile("cpsie i" ::: "memory");
     }
     uint32_t late = 0u;
     advance_tick();
-    while ((int32_t)(ms_count - next_tick_ms) >= 0 && late < UINT16_MAX) {
+    while ((int32_t)(matek_time_ms() - next_tick_ms) >= 0 && late < UINT16_MAX) {
         advance_tick(); /* ticks missed: skipped, counted */
         ++late;
     }
@@ -401,7 +244,6 @@ void board_servo_commit(void)
     stm32_pwm_map_commit(&servos);
 }
 
-uint16_t matek_servo_readback_us(uint8_t channel);
 uint16_t matek_servo_readback_us(uint8_t channel)
 {
     return stm32_pwm_map_readback_us(&servos, channel);

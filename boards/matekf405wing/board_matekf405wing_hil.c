@@ -8,6 +8,7 @@
  */
 #include "hil/hil_link.h"
 #include "matek_board.h"
+#include "matek_hw.h"
 #include "matekf405wing_pins.h"
 #include "serial_rx_ring.h"
 #include "stm32f4_regs.h"
@@ -19,8 +20,6 @@
 static stm32_usart_t link;
 static serial_rx_ring_t ring;
 static volatile uint8_t ring_buf[RX_RING];
-
-uint16_t matek_servo_readback_us(uint8_t channel);
 
 /* Named by the vector table (startup_stm32f405.c), which declares it weak. */
 void USART1_IRQHandler(void);

@@ -3,7 +3,10 @@
  * 8N1 from PCLK2): boot report, device status changes, a heartbeat. In QEMU's
  * netduinoplus2, -serial #0 is this USART.
  */
-#include "matek_board.h"
+#include "matek_console.h"
+
+#include "matek_hw.h"
+#include "matek_txq.h"
 #include "matekf405wing_pins.h"
 #include "stm32f4_regs.h"
 

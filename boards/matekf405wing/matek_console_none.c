@@ -2,7 +2,7 @@
  * matek_console_none.c - the HIL image's console: USART1 carries the HIL
  * frames (board_matekf405wing_hil.c), so status text would corrupt them.
  */
-#include "matek_board.h"
+#include "matek_console.h"
 
 void matek_console_init(void) {}
 

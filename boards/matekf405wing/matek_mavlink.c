@@ -19,7 +19,9 @@
  * ground only (docs/mavlink.md).
  */
 #include "fw_board_config.h"
-#include "matek_board.h"
+#include "matek_console.h"
+#include "matek_hw.h"
+#include "matek_params_boot.h"
 #include "matekf405wing_pins.h"
 #include "serial_rx_ring.h"
 #include "stm32f4_regs.h"

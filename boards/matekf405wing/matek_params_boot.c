@@ -7,7 +7,7 @@
  * clocks are raised; board_init prints the result on the console.
  */
 #include "fw_board_config.h"
-#include "matek_board.h"
+#include "matek_params_boot.h"
 #include "stm32f4_flash.h"
 #include "stm32f4_param_flash.h"
 

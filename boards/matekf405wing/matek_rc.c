@@ -14,7 +14,9 @@
  */
 #include "helical/board.h"
 
-#include "matek_board.h"
+#include "matek_console.h"
+#include "matek_hw.h"
+#include "matek_rc.h"
 #include "matekf405wing_pins.h"
 #include "rc_serial_link.h"
 #include "serial_rx_ring.h"

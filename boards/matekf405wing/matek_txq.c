@@ -1,9 +1,11 @@
 /*
  * matek_txq.c - transmit queues pumped from the main loop (no interrupt:
  * QEMU's USART model raises no TXE interrupt, and the loop wakes at least
- * every millisecond anyway), and the console on USART1.
+ * every millisecond anyway): the console's (matek_console.c) and the GPS's.
  */
-#include "matek_board.h"
+#include "matek_txq.h"
+
+#include "matek_hw.h"
 #include "matekf405wing_pins.h"
 #include "stm32f4_regs.h"
 

@@ -1,10 +1,8 @@
 /*
- * hil_link.h - the seam a HIL image's board file implements for the HIL
- * firmware (hil_fw.c): the byte link to the host and the servo read-back.
- *
- * Its own header, not part of hil_fw.h, so that a board's HIL file depends on
- * the seam only and the firmware on the board one way (hil_fw.c calls these;
- * the board file never needs the protocol): tools/arch/arch_check.py circles.
+ * hil_link.h - the HIL/PIL link's byte transport and servo read-back,
+ * provided by the HIL image's board file (board_stm32f4_hil.c,
+ * board_matekf405wing_hil.c) for the firmware side (hil_fw.c, hil_main.c).
+ * A board file implements these and needs nothing else of the HIL code.
  */
 #ifndef HT_HIL_LINK_H
 #define HT_HIL_LINK_H

@@ -1,10 +1,17 @@
 /*
- * fw_link.c - the link's frame layer: initialisation, the receive side
+ * fw_link.c - the link's API (fw_link.h): initialisation, the receive side
  * (the generated parser on the link's own status and buffer, the drop
- * counters, the target check, the dispatch to the protocols) and the
- * transmit queue (whole frames, first in first out).
+ * counters, the target check, the dispatch to the protocols), the steps'
+ * scheduling of the protocols and the transmit queue's drain (the frames
+ * are built and queued by fw_link_tx.c).
  */
-#include "link/fw_link_internal.h"
+#include "link/fw_link.h"
+
+#include "link/fw_link_command.h"
+#include "link/fw_link_mission.h"
+#include "link/fw_link_param_proto.h"
+#include "link/fw_link_telemetry.h"
+#include "link/fw_link_tx.h"
 
 int fw_link_init(fw_link_t *l, fw_t *fw, fw_config_t *cfg_live, uint8_t sysid, uint8_t compid)
 {
@@ -26,32 +33,6 @@ int fw_link_init(fw_link_t *l, fw_t *fw, fw_config_t *cfg_live, uint8_t sysid, u
 }
 
 /* --- transmit -------------------------------------------------------------- */
-
-/* Room for a frame of this payload length (header, CRC). */
-static int fw_link_has_room(const fw_link_t *l, uint8_t len)
-{
-    const uint32_t overhead = MAVLINK_NUM_NON_PAYLOAD_BYTES; /* header and CRC */
-    const uint32_t need = overhead + (uint32_t)len;
-    return ((uint32_t)l->tx_len + need <= (uint32_t)FW_LINK_TX_BYTES) ? 1 : 0;
-}
-
-int fw_link_queue(fw_link_t *l, uint32_t msgid, const void *pkt, uint8_t len, uint8_t min_len,
-                  uint8_t crc_extra)
-{
-    if (fw_link_has_room(l, len) == 0) {
-        fw_link_count(&l->count.tx_overflow);
-        return 1;
-    }
-    mavlink_message_t *msg = &l->tx_msg;
-    msg->msgid = msgid & 0xFFFFFFu; /* a 24-bit field */
-    (void)memcpy(_MAV_PAYLOAD_NON_CONST(msg), pkt, len);
-    (void)mavlink_finalize_message_buffer(msg, l->params.sysid, l->compid, &l->tx_status, min_len,
-                                          len, crc_extra);
-    const uint16_t n = mavlink_msg_to_send_buffer(&l->tx_buf[l->tx_len], msg);
-    l->tx_len = (uint16_t)(l->tx_len + n);
-    fw_link_count(&l->count.tx_frames);
-    return 0;
-}
 
 size_t fw_link_tx(fw_link_t *l, uint8_t *buf, size_t cap)
 {
@@ -145,11 +126,6 @@ void fw_link_rx(fw_link_t *l, const uint8_t *bytes, size_t n)
 }
 
 /* --- after a step ---------------------------------------------------------- */
-
-uint8_t fw_link_mode(const fw_link_t *l)
-{
-    return (l->have_output != 0u) ? l->last.modes.mode : (uint8_t)HT_MODE_MANUAL;
-}
 
 void fw_link_after_step(fw_link_t *l, const fw_output_t *out, uint32_t now_ms)
 {

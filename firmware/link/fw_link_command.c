@@ -9,12 +9,17 @@
  * step puts the pulse that selects it in place of the mode switch's
  * (fw_step.c), so the modes' own rules hold: the RC-loss failsafe still
  * wins (return home), and the pilot takes the mode back by moving the
- * switch. Modes: custom_mode = fw_link_custom_mode_t (0 manual, 5 fly-by-wire,
- * 10 waypoint, 11 return-to-home); without MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
- * the base mode's flags choose (AUTO: waypoint, STABILIZE: fly-by-wire,
- * else manual).
+ * switch. Modes: custom_mode = fw_link_custom_mode_t (fw_link_modes.h: 0
+ * manual, 5 fly-by-wire, 10 waypoint, 11 return-to-home); without
+ * MAV_MODE_FLAG_CUSTOM_MODE_ENABLED the base mode's flags choose (AUTO:
+ * waypoint, STABILIZE: fly-by-wire, else manual).
  */
-#include "link/fw_link_internal.h"
+#include "link/fw_link_command.h"
+
+#include "link/fw_link_f32.h"
+#include "link/fw_link_modes.h"
+#include "link/fw_link_telemetry.h"
+#include "link/fw_link_tx.h"
 
 static void command_ack(fw_link_t *l, const mavlink_message_t *msg, uint16_t command,
                         uint8_t result)
@@ -26,28 +31,6 @@ static void command_ack(fw_link_t *l, const mavlink_message_t *msg, uint16_t com
     a.target_system = msg->sysid;
     a.target_component = msg->compid;
     (void)FW_LINK_QUEUE(l, COMMAND_ACK, a);
-}
-
-/* custom_mode of each ht_mode_t, in its order */
-static const fw_link_custom_mode_t custom_of_mode[HT_MODE_COUNT] = {
-    FW_LINK_CUSTOM_MANUAL, FW_LINK_CUSTOM_FBW, FW_LINK_CUSTOM_WAYPOINT, FW_LINK_CUSTOM_RTH};
-
-uint32_t fw_link_custom_mode(uint8_t ht_mode)
-{
-    return (ht_mode < (uint8_t)HT_MODE_COUNT) ? (uint32_t)custom_of_mode[ht_mode]
-                                              : (uint32_t)FW_LINK_CUSTOM_MANUAL;
-}
-
-// cppcheck-suppress misra-c2012-8.7 ; D-8.7: the link's API (test_fw_link, ground-station tools)
-int32_t fw_link_mode_of_custom(uint32_t custom_mode)
-{
-    int32_t mode = -1;
-    for (uint8_t m = 0u; m < (uint8_t)HT_MODE_COUNT; ++m) {
-        if ((uint32_t)custom_of_mode[m] == custom_mode) {
-            mode = (int32_t)m;
-        }
-    }
-    return mode;
 }
 
 /* the ht_mode_t a base / custom mode pair asks for, or -1 */

@@ -11,7 +11,9 @@
  * to nearest, ties away from zero (as the parameter table's defaults do),
  * and saturates.
  */
-#include "link/fw_link.h"
+#include "link/fw_link_f32.h"
+
+#include <stddef.h>
 
 /* Bits needed for x (0 for 0). */
 static int bit_length64(uint64_t x)

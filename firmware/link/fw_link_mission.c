@@ -15,7 +15,10 @@
  * the modes are re-initialised on it (ht_modes_init keeps the flight state)
  * and the navigation restarts at item 0 from where the aircraft is.
  */
-#include "link/fw_link_internal.h"
+#include "link/fw_link_mission.h"
+
+#include "link/fw_link_f32.h"
+#include "link/fw_link_tx.h"
 
 #define ALT_LIMIT_CM (100000 * 100) /* +-100 km, the guidance's bound */
 

@@ -6,7 +6,11 @@
  * answered with the value in force: the old one when refused), all
  * answered with PARAM_VALUE, REAL32 in the row's engineering unit.
  */
-#include "link/fw_link_internal.h"
+#include "link/fw_link_param_proto.h"
+
+#include "link/fw_link_f32.h"
+#include "link/fw_link_param_table.h"
+#include "link/fw_link_tx.h"
 
 /* values per step while a list is streamed, and the queue kept free for
  * telemetry meanwhile */

@@ -21,7 +21,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "link/fw_link.h"
+#include "link/fw_link_param_table.h"
 
 typedef enum {
     G_LAW = 0,

@@ -4,7 +4,9 @@
  * bounds are all there is: no joint limit (a rate beyond what the control
  * rate reaches is simply reached at the control rate: docs/mavlink.md).
  */
-#include "link/fw_link.h"
+#include "link/fw_link_params.h"
+
+#include <stddef.h>
 
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t link_rows[HT_PARAM_LINK_COUNT] = {HT_PARAMS_LINK(HT_PARAM_X_INFO)};

@@ -5,7 +5,11 @@
  * output. Due times advance by whole intervals, so a rate that does not
  * divide the control rate is still met on average (docs/mavlink.md).
  */
-#include "link/fw_link_internal.h"
+#include "link/fw_link_telemetry.h"
+
+#include "link/fw_link_f32.h"
+#include "link/fw_link_modes.h"
+#include "link/fw_link_tx.h"
 
 /* pi / 18000 (rad per centidegree) in units of 2^-30 */
 #define RAD_PER_CDEG_Q30 187406

@@ -25,7 +25,7 @@
 
 #include <stdint.h>
 
-#include "helical/estimator/dcm.h"
+#include "helical/estimator/dcm_types.h"
 
 /* Restart: no window, no error (an outage, a re-alignment). */
 void dcm_ga_reset(ht_dcm_ga_t *g);

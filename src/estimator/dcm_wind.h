@@ -42,7 +42,7 @@
 
 #include <stdint.h>
 
-#include "helical/estimator/dcm.h"
+#include "helical/estimator/dcm_types.h"
 
 /* A wind beyond 50 m/s per component is not taken (the fit is wrong). */
 #define DCM_WIND_MAX_CM_S 5000

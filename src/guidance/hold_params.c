@@ -1,11 +1,11 @@
 /*
  * hold_params.c - the holds' parameters from the table (params.def
  * HT_PARAMS_ALT, HT_PARAMS_SPEED): defaults, names, rows and the range
- * checks that name the first bad field. See include/helical/guidance/holds.h.
+ * checks that name the first bad field. See include/helical/guidance/hold_params.h.
  */
 #include <stddef.h>
 
-#include "helical/guidance/holds.h"
+#include "helical/guidance/hold_params.h"
 
 #define HOLD_RATE_MAX_HZ 1000u
 

@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "helical/law/helical_turn.h"
+#include "helical/law/ht_controller.h"
 
 /*
  * Roll-in: the target bank rate d/dt atan(r), r = omega * S / g, for a

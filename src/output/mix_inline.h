@@ -11,8 +11,8 @@
 
 #include <stdint.h>
 
-#include "helical/output/mixer.h"
 #include "helical/math/q14.h"
+#include "helical/output/os_command.h"
 
 /* The command with each input clamped to its range. */
 typedef struct {

@@ -1,5 +1,6 @@
 /*
- * ubx.c - UBX frame decoder: NAV-PVT and ACK-ACK / ACK-NAK. See ubx.h.
+ * ubx.c - UBX frame decoder: NAV-PVT and ACK-ACK / ACK-NAK, and the frame
+ * checksum (the encoders in ubx_encode.c use it too). See ubx.h.
  */
 #include "helical/protocols/ubx.h"
 
@@ -15,6 +16,17 @@ static int32_t get_i32(const uint8_t *p)
 {
     /* two's complement on every target this library builds for */
     return (int32_t)get_u32(p);
+}
+
+uint16_t ubx_checksum(const uint8_t *data, size_t n)
+{
+    uint8_t a = 0u;
+    uint8_t b = 0u;
+    for (size_t i = 0u; i < n; i++) {
+        a = (uint8_t)(a + data[i]);
+        b = (uint8_t)(b + a);
+    }
+    return (uint16_t)((uint16_t)a | ((uint16_t)b << 8u));
 }
 
 static fs_cand_t ubx_classify(const uint8_t *w, size_t n, size_t *size)

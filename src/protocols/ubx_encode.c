@@ -1,20 +1,9 @@
 /*
  * ubx_encode.c - UBX frame and configuration-message encoders: the GPS
- * driver's start-up messages as pure functions into the caller's buffer.
- * See ubx.h.
+ * driver's start-up messages as pure functions into the caller's buffer
+ * (the checksum is the decoder's, ubx.c). See ubx.h.
  */
 #include "helical/protocols/ubx.h"
-
-uint16_t ubx_checksum(const uint8_t *data, size_t n)
-{
-    uint8_t a = 0u;
-    uint8_t b = 0u;
-    for (size_t i = 0u; i < n; i++) {
-        a = (uint8_t)(a + data[i]);
-        b = (uint8_t)(b + a);
-    }
-    return (uint16_t)((uint16_t)a | ((uint16_t)b << 8u));
-}
 
 size_t ubx_encode(uint8_t cls, uint8_t id, const uint8_t *payload, uint16_t len, uint8_t *out,
                   size_t out_size)

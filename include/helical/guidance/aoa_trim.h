@@ -37,41 +37,14 @@
 #include <stdint.h>
 
 #include "helical/params.h"
+#include "helical/guidance/mode_params.h"
 #include "helical/math/q14.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* The parameters in physical units (degrees, cm/s, surface fractions): the
- * rows of params.def HT_PARAMS_AOA. Joint limit: v_ref <= 8 * v_enable
- * (named HT_AOA_P_V_ENABLE). */
-typedef struct {
-    HT_PARAMS_AOA(HT_PARAM_X_FIELD)
-} ht_aoa_params_t;
-
-/* The table's defaults: off, v_ref 15 m/s, enabled from 8 m/s, load limit
- * 4, all coefficients 0. */
-#define HT_AOA_PARAMS_DEFAULT                                                                      \
-    {                                                                                              \
-        HT_PARAMS_AOA(HT_PARAM_X_DEFAULT)                                                          \
-    }
-
-/* HT_AOA_P_<ID> of each row, in table order. */
-#define HT_PARAM_X_AOA_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_AOA_P_##id,
-typedef enum {
-    HT_AOA_P_NONE = 0,
-    HT_PARAMS_AOA(HT_PARAM_X_AOA_ID) HT_AOA_P_COUNT
-} ht_aoa_param_id_t;
-
-/* The table's row of a parameter, or NULL. */
-const ht_param_info_t *ht_aoa_param_info(ht_aoa_param_id_t id);
-
-/* The first row outside its bounds (table order), then the joint limit, or
- * HT_AOA_P_NONE. p must not be NULL. */
-ht_aoa_param_id_t ht_aoa_first_bad(const ht_aoa_params_t *p);
-
-const char *ht_aoa_param_name(ht_aoa_param_id_t id);
+/* The parameters (ht_aoa_params_t) and their ids: mode_params.h. */
 
 /* The converted model. Read-only after ht_aoa_init. */
 typedef struct {

@@ -29,40 +29,14 @@
 
 #include "helical/output/mixer.h"
 #include "helical/params.h"
+#include "helical/guidance/mode_params.h"
 #include "helical/math/q14.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* The parameters: the rows of params.def HT_PARAMS_FBW (names, units,
- * ranges, defaults). */
-typedef struct {
-    HT_PARAMS_FBW(HT_PARAM_X_FIELD)
-} ht_fbw_params_t;
-
-/* The table's defaults: deadband 8 us, 60 deg/s, pitch ratio 0.5 (about
- * 27 deg), switch on input 5 at 1500 us. */
-#define HT_FBW_PARAMS_DEFAULT                                                                      \
-    {                                                                                              \
-        HT_PARAMS_FBW(HT_PARAM_X_DEFAULT)                                                          \
-    }
-
-/* HT_FBW_P_<ID> of each row, in table order. */
-#define HT_PARAM_X_FBW_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_FBW_P_##id,
-typedef enum {
-    HT_FBW_P_NONE = 0,
-    HT_PARAMS_FBW(HT_PARAM_X_FBW_ID) HT_FBW_P_COUNT
-} ht_fbw_param_id_t;
-
-/* The table's row of a parameter, or NULL. */
-const ht_param_info_t *ht_fbw_param_info(ht_fbw_param_id_t id);
-
-/* The first row outside its bounds (table order), or HT_FBW_P_NONE. p must
- * not be NULL. */
-ht_fbw_param_id_t ht_fbw_first_bad(const ht_fbw_params_t *p);
-
-const char *ht_fbw_param_name(ht_fbw_param_id_t id);
+/* The parameters (ht_fbw_params_t) and their ids: mode_params.h. */
 
 typedef struct {
     uint16_t deadband_us;

@@ -73,6 +73,7 @@
 #include "helical/guidance/holds.h"
 #include "helical/output/mixer.h"
 #include "helical/guidance/nav.h"
+#include "helical/guidance/mode_params.h"
 #include "helical/math/q14.h"
 
 #ifdef __cplusplus
@@ -89,44 +90,12 @@ typedef enum {
     HT_MODE_COUNT
 } ht_mode_t;
 
-/* The parameters: the modes' own rows of params.def (HT_PARAMS_MODES:
- * names, units, ranges, defaults), then what is not a row (the RC
- * calibrations, the switch thresholds, the control rate) and the blocks,
- * each with its own rows. */
-typedef struct {
-    HT_PARAMS_MODES(HT_PARAM_X_FIELD)
-    os_rc_map_t rc;                /* manual sticks; aileron and elevator are also FBW's */
-    uint16_t mode_threshold_us[3]; /* strictly increasing, within the valid RC window */
-    uint16_t rate_hz;              /* control rate, [1, 1000]; also alt.rate_hz, speed.rate_hz */
-    ht_fbw_params_t fbw;
-    ht_nav_params_t nav;
-    ht_aoa_params_t aoa;
-    ht_alt_hold_params_t alt;
-    ht_speed_hold_params_t speed;
-} ht_modes_params_t;
+/* The parameters (ht_modes_params_t) and their ids (ht_modes_param_id_t):
+ * mode_params.h. */
 
 /* Fills p with the defaults documented in docs/flight-modes.md (RC inputs
  * 0 aileron, 1 elevator, 2 throttle, 3 rudder, 4 mode, 5 inverted). */
 void ht_modes_params_default(ht_modes_params_t *p);
-
-/* HT_MODES_P_<ID> of each own row (table order), then what is not a row. */
-#define HT_PARAM_X_MODES_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_MODES_P_##id,
-typedef enum {
-    HT_MODES_P_NONE = 0,
-    HT_PARAMS_MODES(HT_PARAM_X_MODES_ID) HT_MODES_P_RC_AILERON,
-    HT_MODES_P_RC_ELEVATOR,
-    HT_MODES_P_RC_RUDDER,
-    HT_MODES_P_RC_THROTTLE,
-    HT_MODES_P_MODE_THRESHOLD,
-    HT_MODES_P_RATE_HZ,
-    HT_MODES_P_CONTROLLER, /* the ht_controller_t is NULL or not initialised */
-    HT_MODES_P_FBW,        /* see bad->sub (ht_fbw_param_id_t) */
-    HT_MODES_P_NAV,        /* see bad->sub (ht_nav_param_id_t), bad->waypoint */
-    HT_MODES_P_AOA,        /* see bad->sub (ht_aoa_param_id_t) */
-    HT_MODES_P_ALT_HOLD,   /* see bad->sub (ht_alt_param_id_t; RATE_HZ: != rate_hz) */
-    HT_MODES_P_SPEED_HOLD, /* see bad->sub (ht_speed_param_id_t; RATE_HZ: != rate_hz) */
-    HT_MODES_P_COUNT
-} ht_modes_param_id_t;
 
 /* Which field init refused: field, and for the sub-modules their field. */
 typedef struct {
@@ -135,13 +104,6 @@ typedef struct {
                           ALT_HOLD / SPEED_HOLD */
     uint16_t waypoint; /* the bad waypoint's index for HT_NAV_P_WAYPOINT */
 } ht_modes_bad_t;
-
-/* The table's row of one of the modes' own parameters, or NULL. */
-const ht_param_info_t *ht_modes_param_info(ht_modes_param_id_t id);
-
-/* The first of the modes' own rows outside its bounds (table order), or
- * HT_MODES_P_NONE. p must not be NULL. */
-ht_modes_param_id_t ht_modes_first_bad_row(const ht_modes_params_t *p);
 
 /* "mode_threshold_us", "fbw.deadband_us", "nav.l1_m", ... into buf (always
  * terminated; at most size - 1 characters). */

@@ -62,6 +62,7 @@
 #include <stdint.h>
 
 #include "helical/params.h"
+#include "helical/guidance/mode_params.h"
 #include "helical/math/q14.h"
 
 #ifdef __cplusplus
@@ -80,37 +81,7 @@ typedef struct {
     int32_t north_m, east_m, alt_m;
 } ht_waypoint_t;
 
-/* The parameters: the rows of params.def HT_PARAMS_NAV (names, units,
- * ranges, defaults). */
-typedef struct {
-    HT_PARAMS_NAV(HT_PARAM_X_FIELD)
-} ht_nav_params_t;
-
-/* The table's defaults: heading law, 60 deg/s, L1 60 m, arrival 20 m, loiter
- * 60 m, home 100 m, floor 5 m/s, course from 2 m/s, looping. */
-#define HT_NAV_PARAMS_DEFAULT                                                                      \
-    {                                                                                              \
-        HT_PARAMS_NAV(HT_PARAM_X_DEFAULT)                                                          \
-    }
-
-/* HT_NAV_P_<ID> of each row, in table order, then the waypoint list's. */
-#define HT_PARAM_X_NAV_ID(id, name, field, unit, fmt, lo, hi, def, desc) HT_NAV_P_##id,
-typedef enum {
-    HT_NAV_P_NONE = 0,
-    HT_PARAMS_NAV(HT_PARAM_X_NAV_ID) HT_NAV_P_WAYPOINT_COUNT, /* count > HT_NAV_MAX_WAYPOINTS,
-                                                                 or count > 0 with a NULL list */
-    HT_NAV_P_WAYPOINT, /* a waypoint out of range: index in *bad_waypoint */
-    HT_NAV_P_COUNT
-} ht_nav_param_id_t;
-
-/* The table's row of a parameter, or NULL (also for the waypoint ids). */
-const ht_param_info_t *ht_nav_param_info(ht_nav_param_id_t id);
-
-/* The first row outside its bounds (table order), or HT_NAV_P_NONE (the
- * waypoints are ht_nav_init's). p must not be NULL. */
-ht_nav_param_id_t ht_nav_first_bad(const ht_nav_params_t *p);
-
-const char *ht_nav_param_name(ht_nav_param_id_t id);
+/* The parameters (ht_nav_params_t) and their ids: mode_params.h. */
 
 /* The converted parameters and the list. Read-only after ht_nav_init. */
 typedef struct {

@@ -127,10 +127,11 @@ ubx_result_t ubx_push(ubx_decoder_t *d, uint8_t byte, ubx_msg_t *out);
 size_t ubx_feed(ubx_decoder_t *d, const uint8_t *bytes, size_t n, ubx_msg_t *out,
                 ubx_result_t *result);
 
-/* ---- encoders (src/protocols/ubx_encode.c) ------------------------------------------ */
-
-/* The Fletcher checksum of n bytes: CK_A in bits 0..7, CK_B in bits 8..15. */
+/* The Fletcher checksum of n bytes: CK_A in bits 0..7, CK_B in bits 8..15
+ * (src/protocols/ubx.c: the decoder's, which the encoders use too). */
 uint16_t ubx_checksum(const uint8_t *data, size_t n);
+
+/* ---- encoders (src/protocols/ubx_encode.c) ------------------------------------------ */
 
 /*
  * Write one frame into out (capacity out_size). Returns its length

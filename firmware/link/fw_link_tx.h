@@ -1,15 +1,18 @@
 /*
- * fw_link_internal.h - what the link's files share (not an API): queueing a
- * generated message, the handlers of each protocol, float fields by bit
- * pattern.
+ * fw_link_tx.h - the base of the link's files (fw_link_tx.c; not an API):
+ * queueing a generated message, the mode the link reports, float fields by
+ * bit pattern, the counters. The protocols (fw_link_telemetry.c,
+ * fw_link_param_proto.c, fw_link_mission.c, fw_link_command.c) and the
+ * dispatch above them (fw_link.c) use it; it uses none of them.
  */
-#ifndef HT_FW_LINK_INTERNAL_H
-#define HT_FW_LINK_INTERNAL_H
+#ifndef HT_FW_LINK_TX_H
+#define HT_FW_LINK_TX_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <string.h>
 
-#include "link/fw_link.h"
+#include "link/fw_link_types.h"
 /* every message of common.xml (the generated headers of mavgen) */
 #include "mavlink/common/mavlink.h"
 
@@ -57,26 +60,7 @@ static inline void fw_link_count(uint32_t *c)
     }
 }
 
-/* Handlers of a received, accepted frame (each ignores ids not its own). */
-void fw_link_param_rx(fw_link_t *l, const mavlink_message_t *msg);
-void fw_link_mission_rx(fw_link_t *l, const mavlink_message_t *msg);
-void fw_link_command_rx(fw_link_t *l, const mavlink_message_t *msg);
-
-/* After a control step: the parameter list's next values, the mission
- * protocol's timeouts and pending list, the telemetry that is due. */
-void fw_link_param_after_step(fw_link_t *l);
-void fw_link_mission_after_step(fw_link_t *l);
-void fw_link_telemetry_after_step(fw_link_t *l);
-
-/* Send a telemetry stream's message now (also REQUEST_MESSAGE). */
-void fw_link_send_stream(fw_link_t *l, fw_link_stream_t s);
-/* The stream a message id belongs to, or FW_LINK_S_COUNT. */
-fw_link_stream_t fw_link_stream_of(uint32_t msgid);
-
-/* One PARAM_VALUE for a flat index. */
-int fw_link_send_param_value(fw_link_t *l, uint16_t index);
-
 /* The mode the link reports (ht_mode_t) from the last step. */
 uint8_t fw_link_mode(const fw_link_t *l);
 
-#endif /* HT_FW_LINK_INTERNAL_H */
+#endif /* HT_FW_LINK_TX_H */
