@@ -68,22 +68,24 @@ class _Normals:
     def __init__(self, rng: np.random.Generator) -> None:
         self.rng = rng
         self.buf = np.empty(0)
+        self.addr = 0  # the buffer's address: .ctypes per call costs more than the model
         self.next = 0
 
-    def take(self, n_samples: int) -> np.ndarray:
+    def take(self, n_samples: int) -> tuple[int, int]:
+        """(address, count) of the next 6 * n_samples normals."""
         need = 6 * n_samples
         if self.next + need > len(self.buf):
-            rest = self.buf[self.next:]
-            blocks = [rest]
-            have = len(rest)
+            blocks = [self.buf[self.next:]]
+            have = len(blocks[0])
             while have < need:
                 blocks.append(self.rng.standard_normal(BLOCK))
                 have += BLOCK
             self.buf = np.concatenate(blocks)
+            self.addr = self.buf.ctypes.data
             self.next = 0
-        out = self.buf[self.next:self.next + need]
+        at = self.addr + 8 * self.next
         self.next += need
-        return out
+        return at, need
 
 
 class CImu:
@@ -115,6 +117,7 @@ class CImu:
         self.gyro_bias = tuple(float(b) for b in ref.gyro.bias)
         self._ng, self._na = _Normals(ref.gyro.rng), _Normals(ref.accel.rng)
         self._at = _I(0)
+        self._at_addr = ctypes.addressof(self._at)
         self._ptr = ctypes.addressof(m)
 
     def walk_state(self) -> tuple[float, float, float]:
@@ -126,24 +129,28 @@ class CImu:
             dt_s: float) -> tuple[np.ndarray, np.ndarray]:
         """The samples of n frames taken at t_base_s + (j + 1) * dt_s: rows holds
         n * N_IN doubles (a ctypes array, in IN_PROPS order per frame). Returns
-        (gyro rad/s, accel g), n rows of 3 each. Raises ValueError as
-        models.ImuModel.sample does (a time off the IMU period, a state not
-        finite)."""
-        gyro = np.empty((n, 3))
-        accel = np.empty((n, 3))
-        ng, na = self._ng.take(n), self._na.take(n)
-        rc = self._run(self._ptr, ctypes.addressof(rows), n, t_base_s, dt_s,
-                       ng.ctypes.data, na.ctypes.data, len(ng), gyro.ctypes.data,
-                       accel.ctypes.data, None, ctypes.addressof(self._at))
+        (gyro rad/s, accel g), n rows of 3 each, new arrays. Raises ValueError
+        as models.ImuModel.sample does (a time off the IMU period, a state not
+        finite); the run is then over (the normals of the refused batch are
+        spent)."""
+        out = np.empty((2, n, 3))
+        addr = out.ctypes.data
+        ag, ng = self._ng.take(n)
+        aa, _na = self._na.take(n)
+        rc = self._run(self._ptr, ctypes.addressof(rows), n, t_base_s, dt_s, ag, aa, ng,
+                       addr, addr + 8 * 3 * n, None, self._at_addr)
         if rc != OK:
-            j = self._at.value
-            t = t_base_s + (j + 1) * dt_s
-            if rc == NOT_FINITE:
-                row = [rows[j * N_IN + i] for i in range(N_IN)]
-                raise ValueError(f"imu: non-finite state at t={t:.6f} s: "
-                                 + ", ".join(f"{p}={v!r}" for p, v in zip(IN_PROPS, row)))
-            if rc == BAD_TIME:
-                raise ValueError(f"imu: sample at t={t!r} s is not one period "
-                                 f"(1/{self.model.rate_hz:g} s) after the previous one")
-            raise ValueError(f"imu: sil_imu_model_run answered {rc} at sample {j}")
-        return gyro, accel
+            self._raise(rc, rows, t_base_s, dt_s)
+        return out[0], out[1]
+
+    def _raise(self, rc: int, rows: Any, t_base_s: float, dt_s: float) -> None:
+        j = self._at.value
+        t = t_base_s + (j + 1) * dt_s
+        if rc == NOT_FINITE:
+            row = [rows[j * N_IN + i] for i in range(N_IN)]
+            raise ValueError(f"imu: non-finite state at t={t:.6f} s: "
+                             + ", ".join(f"{p}={v!r}" for p, v in zip(IN_PROPS, row)))
+        if rc == BAD_TIME:
+            raise ValueError(f"imu: sample at t={t!r} s is not one period "
+                             f"(1/{self.model.rate_hz:g} s) after the previous one")
+        raise ValueError(f"imu: sil_imu_model_run answered {rc} at sample {j}")

@@ -401,6 +401,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     """Fly one scenario; returns the telemetry at the control rate."""
     fdm = make_fdm(sc)
     n_engines = fdm.get_propulsion().get_num_engines()
+    throttle_props = [f"fcs/throttle-cmd-norm[{e}]" for e in range(n_engines)]
     trim_ail, trim_elev, trim_rud = frames.surfaces_from_jsbsim(
         fdm["fcs/aileron-cmd-norm"], fdm["fcs/elevator-cmd-norm"], fdm["fcs/rudder-cmd-norm"])
     trims = {"aileron": float(trim_ail), "elevator": float(trim_elev), "rudder": float(trim_rud),
@@ -427,8 +428,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     dt_sim = 1.0 / sc.sim_rate_hz
     frame_rows = (ctypes.c_double * (imu_c.N_IN * n_sub))()
     frame_props = imu_c.IN_PROPS
-    for i, name in enumerate(frame_props):
-        frame_rows[i] = fdm[name]
+    n_in = imu_c.N_IN
+    frame_rows[0:n_in] = [fdm[name] for name in frame_props]
     # the first control step's samples: the state after the trim (at t = 0:
     # -dt + 1 * dt is 0 exactly), n_sub times
     g0, a0 = imu.run(frame_rows, 1, -dt_sim, dt_sim)
@@ -543,8 +544,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         fdm["fcs/aileron-cmd-norm"] = ail
         fdm["fcs/elevator-cmd-norm"] = elev
         fdm["fcs/rudder-cmd-norm"] = rud
-        for e in range(n_engines):
-            fdm[f"fcs/throttle-cmd-norm[{e}]"] = a.throttle
+        for throttle_prop in throttle_props:
+            fdm[throttle_prop] = a.throttle
 
         cmd_turn_deg_s = seg.turn_rate_deg_s
         log_alt_hold, log_inv = seg.altitude_hold, seg.inverted
@@ -591,16 +592,13 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             fdm["atmosphere/wind-north-fps"] = ramp * sc.wind_north_m_s / FT
             fdm["atmosphere/wind-east-fps"] = ramp * sc.wind_east_m_s / FT
             fdm["atmosphere/wind-down-fps"] = ramp * sc.wind_down_m_s / FT
-        row = 0
         for j in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
             # rectangle rule at the sim rate on the wind after each frame
             air_down += fdm["atmosphere/total-wind-down-fps"] * FT * dt_sim
             # the frame's state for the IMU (rates, forces, mass)
-            for name in frame_props:
-                frame_rows[row] = fdm[name]
-                row += 1
+            frame_rows[j * n_in:(j + 1) * n_in] = [fdm[name] for name in frame_props]
         # the IMU samples each frame's state (one C call for the step's frames)
         try:
             imu_batch = imu.run(frame_rows, n_sub, t, dt_sim)
