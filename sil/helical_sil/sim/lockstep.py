@@ -625,11 +625,13 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
 
 def _angle_deg(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
     """The angle between two vectors (the estimated and the true earth-down)."""
-    na = math.sqrt(sum(v * v for v in a))
-    nb = math.sqrt(sum(v * v for v in b))
+    # the sums written out (no generator: this runs every control step); the
+    # same additions in the same order as sum(), so the same bits
+    na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    nb = math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2])
     if na == 0.0 or nb == 0.0:
         return 180.0
-    c = sum(u * v for u, v in zip(a, b)) / (na * nb)
+    c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb)
     return math.degrees(math.acos(max(-1.0, min(1.0, c))))
 
 
