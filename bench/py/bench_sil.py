@@ -15,7 +15,8 @@ whatever its length.
 and of a `helical_sil tune` search, both on --jobs processes (2 by default:
 the machine of the docs' figures).
 
-Run through scripts/bench.sh --sil (the SIL venv; the host preset's board
+--update-doc writes the tables to docs/generated/sil-speed.md, the figures
+the docs quote. Run through scripts/bench.sh --sil (the SIL venv; the host preset's board
 library must be built). Prints Markdown; exits 2 on a bad argument and 3 when
 a flight cannot be flown, naming it.
 """
@@ -34,6 +35,7 @@ from pathlib import Path
 T_START = time.perf_counter()  # before the harness's imports: startup includes them
 
 ROOT = Path(__file__).resolve().parents[2]
+DOC = ROOT / "docs" / "generated" / "sil-speed.md"
 DEFAULT_SCENARIOS = ("sil/scenarios/default.toml", "sil/scenarios/c172p_helical_level.toml")
 
 
@@ -118,6 +120,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--tune", type=int, default=0, metavar="TRIALS",
                     help="also time `helical_sil tune` of T37 with TRIALS trials (0: no)")
     ap.add_argument("--jobs", type=int, default=2, help="processes for --batch and --tune")
+    ap.add_argument("--update-doc", action="store_true",
+                    help=f"also write the tables to {DOC.relative_to(ROOT)}")
     a = ap.parse_args(argv)
     if a.repeat < 1 or a.jobs < 1 or a.tune < 0:
         print("bench_sil: --repeat and --jobs must be >= 1, --tune >= 0", file=sys.stderr)
@@ -129,36 +133,57 @@ def main(argv: list[str] | None = None) -> int:
             return 2
     res = measure_ratio(paths, a.repeat)
     start = res[0]
-    print(f"## SIL speed against JSBSim's bare loop (median of {a.repeat}, side by side)\n")
-    print("| scenario | aircraft | attitude | flown s | sim Hz | JSBSim alone × real time "
-          "| SIL × real time | SIL / JSBSim | same, CPU time | flight setup s |")
-    print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    out: list[str] = []
+    emit = out.append  # the tables: to stdout and, with --update-doc, to the doc
+    emit(f"## SIL speed against JSBSim's bare loop (median of {a.repeat}, side by side)\n")
+    emit("| scenario | aircraft | attitude | flown s | sim Hz | JSBSim alone × real time "
+         "| SIL × real time | SIL / JSBSim | same, CPU time | flight setup s |")
+    emit("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for r in res[1:]:
-        print(f"| {r['scenario']} | {r['aircraft']} | {r['source']} | {r['duration_s']:.0f} "
-              f"| {r['sim_rate_hz']} | {r['bare_x']:.0f} | {r['sil_x']:.0f} "
-              f"| {r['ratio']:.2f} | {r['cpu_ratio']:.2f} | {r['setup_s']:.3f} |")
-    print(f"\nStartup, once per process: imports {start['imports_s']:.2f} s, board library "
-          f"{start['board_load_s'] * 1000:.0f} ms; per flight: JSBSim load and trim, board "
-          "init (the last column).")
+        emit(f"| {r['scenario']} | {r['aircraft']} | {r['source']} | {r['duration_s']:.0f} "
+             f"| {r['sim_rate_hz']} | {r['bare_x']:.0f} | {r['sil_x']:.0f} "
+             f"| {r['ratio']:.2f} | {r['cpu_ratio']:.2f} | {r['setup_s']:.3f} |")
+    emit(f"\nStartup, once per process: imports {start['imports_s']:.2f} s, board library "
+         f"{start['board_load_s'] * 1000:.0f} ms; per flight: JSBSim load and trim, board "
+         "init (the last column).")
     if a.batch or a.tune:
-        print(f"\n## Campaign wall times ({a.jobs} jobs, {os.cpu_count()} CPUs)\n")
-        print("| command | wall s | exit |")
-        print("| --- | ---: | ---: |")
+        emit(f"\n## Campaign wall times ({a.jobs} jobs, {os.cpu_count()} CPUs)\n")
+        emit("| command | wall s | exit |")
+        emit("| --- | ---: | ---: |")
         py = sys.executable
         with tempfile.TemporaryDirectory() as tmp:
             if a.batch:
                 cmd = [py, "-m", "helical_sil", "batch", "sil/scenarios", "--out",
                        f"{tmp}/batch", "--no-plots", "--jobs", str(a.jobs)]
                 w, rc = wall_of(cmd)
-                print(f"| `helical_sil batch sil/scenarios --no-plots --jobs {a.jobs}` "
-                      f"| {w:.1f} | {rc} |")
+                emit(f"| `helical_sil batch sil/scenarios --no-plots --jobs {a.jobs}` "
+                     f"| {w:.1f} | {rc} |")
             if a.tune:
                 cmd = [py, "-m", "helical_sil", "tune", "sil/scenarios/aircraft/T37.toml",
                        "--out", f"{tmp}/tune", "--trials", str(a.tune), "--jobs", str(a.jobs)]
                 w, rc = wall_of(cmd)
-                print(f"| `helical_sil tune T37.toml --trials {a.tune} --jobs {a.jobs}` "
-                      f"| {w:.1f} | {rc} |")
+                emit(f"| `helical_sil tune T37.toml --trials {a.tune} --jobs {a.jobs}` "
+                     f"| {w:.1f} | {rc} |")
+    text = "\n".join(out) + "\n"
+    sys.stdout.write(text)
+    if a.update_doc:
+        argv_s = " ".join(sys.argv[1:])
+        DOC.parent.mkdir(parents=True, exist_ok=True)
+        DOC.write_text(
+            "<!-- generated by scripts/bench.sh --sil --update-doc: do not edit by hand -->\n"
+            f"# SIL speed (generated)\n\nWritten by `scripts/bench.sh --sil {argv_s}` "
+            f"at commit `{_git('rev-parse', '--short', 'HEAD')}` on "
+            f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs, "
+            f"load average {os.getloadavg()[0]:.1f} at the end (other work on the cores slows "
+            "both columns; the ratios are measured side by side, the CPU-time one is the "
+            "steadier).\n\n" + text.replace("## ", "### "))
+        sys.stderr.write(f"bench_sil: wrote {DOC.relative_to(ROOT)}\n")
     return 0
+
+
+def _git(*args: str) -> str:
+    r = subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True)
+    return r.stdout.strip() or "unknown"
 
 
 if __name__ == "__main__":
