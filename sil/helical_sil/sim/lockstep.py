@@ -24,6 +24,7 @@ from helical_sil.config import params
 from helical_sil.config.scenario import ESTIMATOR_KEYS, Scenario
 from helical_sil.sensors import frames
 from helical_sil.sensors import models as sensors_mod
+from helical_sil.sim import board as board_mod
 from helical_sil.sim import imu_c
 from helical_sil.sim.board import IMU_MAX, Board
 from helical_sil.sim.faults import SensorFaults  # fault campaign (issue 7)
@@ -423,7 +424,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     # the IMU's per-sample model runs in C (boards/sil/sil_imu_model.c), fed
     # each sim frame's JSBSim values: the Python model's samples, a fraction
     # of the cost (imu_c.py)
-    imu = imu_c.CImu(model._imu, Board.library(board_lib))
+    # (board_mod.Board: the library even when a host swaps lockstep.Board, live/pil.py)
+    imu = imu_c.CImu(model._imu, board_mod.Board.library(board_lib))
     n_sub = sc.sim_rate_hz // sc.control_rate_hz
     dt_sim = 1.0 / sc.sim_rate_hz
     frame_rows = (ctypes.c_double * (imu_c.N_IN * n_sub))()
