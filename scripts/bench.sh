@@ -7,6 +7,9 @@
 #   scripts/bench.sh --quick    CI run (200 steps, -O2): fails only on breakage
 #   scripts/bench.sh --help     every option (bench/py/bench.py)
 #   scripts/bench.sh --dcm      the attitude estimator (bench/py/bench_dcm.py)
+#   scripts/bench.sh --sil      the SIL's speed against JSBSim's bare loop, side by
+#                               side; --batch, --tune N add campaign wall times
+#                               (bench/py/bench_sil.py --help)
 #
 # Needs arm-none-eabi-gcc, gcc, python3 (venv) and, for the callgrind figure,
 # valgrind. Makes bench/.venv from bench/requirements.lock on first use
@@ -14,6 +17,12 @@
 # to bench/out/ (table.md, profile.md, results.json).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+if [[ ${1:-} == --sil ]]; then # the SIL harness's own venv and board library, no ARM tools
+    shift
+    [[ -x .venv/bin/python ]] || { echo "bench.sh: no .venv (scripts/setup_venv.sh)" >&2; exit 2; }
+    PYTHONPATH="$PWD/sil${PYTHONPATH:+:$PYTHONPATH}" exec .venv/bin/python bench/py/bench_sil.py "$@"
+fi
 
 for tool in arm-none-eabi-gcc arm-none-eabi-objdump arm-none-eabi-size arm-none-eabi-addr2line gcc python3; do
     if ! command -v "$tool" >/dev/null 2>&1; then

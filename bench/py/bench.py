@@ -1468,6 +1468,8 @@ def main(argv: Optional[list[str]] = None) -> int:
             "arm_cc": run([ARM_CC, "--version"]).stdout.splitlines()[0],
             "host_cc": run(["gcc", "--version"]).stdout.splitlines()[0],
             "n_real": n_real, "n_edge": n_edge, "seed": args.seed, "quick": quick,
+            # bench_dcm.py takes the law's cost from an options-off run only
+            "options": bool(args.options),
         }
         text = tables(results, host, meta, fps, acc)
         prof = profile_tables(results, args.top, opts[0])

@@ -6,13 +6,17 @@ and one ht_dcm_output at the control rate.
 
     bench/.venv/bin/python bench/py/bench_dcm.py [--samples N] [--opt O2]
 
-(scripts/bench.sh --dcm runs it in the bench's venv.) Prints a Markdown table
-and writes bench/out/dcm.json. Exits non-zero only on breakage (a build, a
+(scripts/bench.sh --dcm runs it in the bench's venv.) The law's share is the
+last scripts/bench.sh run's (bench/out/results.json, or --law-results; exit 2
+without one). Prints a Markdown table and writes bench/out/dcm.json;
+--update-doc also writes docs/generated/cpu-load.md, the figures the docs quote. Exits non-zero only on breakage (a build, a
 fault, a call that does not return, a setup that fails).
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import json
 import statistics
 import sys
@@ -22,9 +26,32 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench as B  # noqa: E402  (the main benchmark: builds, disassembly, emulator)
 
-# Instructions per control step of ht_step + output stage (mix + 5 pulses),
-# medians from bench.py at commit 6e5ecb5 (README "Benchmarks"), -O2.
-LAW_OS_INSNS = {"M0": 2262, "M4": 942}
+# Instructions per control step of ht_step + output stage (mix + 5 pulses):
+# the medians of the last bench.py run (its results.json, options off, the
+# same -O level), not a figure typed here (issue 32: a copy went stale).
+LAW_RESULTS = B.BENCH / "out" / "results.json"
+DOC = B.ROOT / "docs" / "generated" / "cpu-load.md"
+
+
+def law_os_insns(path: Path, opt: str) -> tuple[dict[str, float], str]:
+    """{core: median instructions of ht_step + output stage} and where they come from."""
+    if not path.is_file():
+        raise B.BenchError(f"{path}: no bench.py results: run scripts/bench.sh (the law's "
+                           "cost per control step) first, or give --law-results")
+    try:
+        doc = json.loads(path.read_text())
+        meta = doc["meta"]
+        if meta.get("options"):
+            raise B.BenchError(f"{path}: a --options run; the load figure takes the law with "
+                               "its options off: run scripts/bench.sh")
+        got = {r["core"]: float(r["workloads"]["step_os"]["all"]["med"])
+               for r in doc["results"] if r["opt"] == opt and r["core"] in ("M0", "M4")}
+    except (KeyError, TypeError, ValueError) as e:
+        raise B.BenchError(f"{path}: not a bench.py results.json ({e!r})") from None
+    if set(got) != {"M0", "M4"}:
+        raise B.BenchError(f"{path}: no -{opt} ht_step + output stage figures for M0 and M4")
+    run = "quick run" if meta.get("quick") else "full run"
+    return got, f"bench.py {run} at {meta.get('commit', '?')}, {meta.get('date', '?')}"
 # Clock and cycles per instruction assumed for the load figure (stated in the
 # output): the M4 at 168 MHz (STM32F405) ~1 cycle per instruction, the M0 at
 # 48 MHz ~1.3 (its 32x32 multiply is 1 cycle on the fast-multiplier option;
@@ -96,8 +123,9 @@ def host_state(outroot: Path, samples: int) -> str:
     return B.run([str(exe), str(samples)]).stdout.strip()
 
 
-def load(core: str, upd: float, outp: float, imu_hz: int, ctl_hz: int) -> dict[str, float]:
-    insns_s = upd * imu_hz + (outp + LAW_OS_INSNS[core]) * ctl_hz
+def load(core: str, upd: float, outp: float, law_os: float, imu_hz: int,
+         ctl_hz: int) -> dict[str, float]:
+    insns_s = upd * imu_hz + (outp + law_os) * ctl_hz
     return {"insns_per_s": insns_s, "percent": 100.0 * insns_s * CPI[core] / CLOCK_HZ[core],
             "estimator_percent": 100.0 * upd * imu_hz * CPI[core] / CLOCK_HZ[core]}
 
@@ -109,9 +137,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--imu-hz", type=int, default=200)
     ap.add_argument("--control-hz", type=int, default=40)
     ap.add_argument("--out", type=Path, default=B.BENCH / "out")
+    ap.add_argument("--update-doc", action="store_true",
+                    help="also write the tables to docs/generated/cpu-load.md")
+    ap.add_argument("--law-results", type=Path, default=LAW_RESULTS,
+                    help="bench.py's results.json for the law's cost (default: the last run's)")
     a = ap.parse_args(argv)
+    try:
+        law, law_src = law_os_insns(a.law_results, a.opt)
+    except B.BenchError as ex:
+        print(f"bench_dcm: {ex}", file=sys.stderr)
+        return 2
     res: dict[str, Any] = {"samples": a.samples, "opt": a.opt, "imu_hz": a.imu_hz,
-                           "control_hz": a.control_hz, "law_os_insns": LAW_OS_INSNS,
+                           "control_hz": a.control_hz, "law_os_insns": law,
+                           "law_os_source": law_src,
                            "clock_hz": CLOCK_HZ, "cpi": CPI, "cores": {}}
     try:
         host = host_state(a.out, a.samples)
@@ -119,16 +157,33 @@ def main(argv: list[str] | None = None) -> int:
             core = B.CORES[name]
             elf = build(core, a.opt, a.out)
             m = measure(core, elf, a.samples, host)
-            m["load"] = load(name, m["update"]["median"], m["output"]["median"], a.imu_hz,
-                             a.control_hz)
-            m["load_worst"] = load(name, m["update"]["max"], m["output"]["max"], a.imu_hz,
-                                   a.control_hz)
+            m["load"] = load(name, m["update"]["median"], m["output"]["median"], law[name],
+                             a.imu_hz, a.control_hz)
+            m["load_worst"] = load(name, m["update"]["max"], m["output"]["max"], law[name],
+                                   a.imu_hz, a.control_hz)
             res["cores"][name] = m
     except B.BenchError as ex:
         print(f"bench_dcm: {ex}", file=sys.stderr)
         return 1
     a.out.mkdir(parents=True, exist_ok=True)
     (a.out / "dcm.json").write_text(json.dumps(res, indent=1))
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        tables(res, a)
+    sys.stdout.write(buf.getvalue())
+    if a.update_doc:
+        DOC.parent.mkdir(parents=True, exist_ok=True)
+        DOC.write_text("<!-- generated by scripts/bench.sh --dcm --update-doc: do not edit by "
+                       "hand -->\n# Estimator cost and CPU load (generated)\n\nWritten by "
+                       f"`scripts/bench.sh --dcm {' '.join(sys.argv[1:])}`.\n\n"
+                       + buf.getvalue())
+        print(f"bench_dcm: wrote {DOC.relative_to(B.ROOT)}", file=sys.stderr)
+    return 0
+
+
+def tables(res: dict[str, Any], a: argparse.Namespace) -> None:
+    """The Markdown tables of one run, on stdout."""
+    law, law_src = res["law_os_insns"], res["law_os_source"]
     print(f"Estimator, arm-none-eabi-gcc -{a.opt}, {a.samples} samples of a synthetic flight "
           f"(min / median / max instructions):\n")
     print("| | Cortex-M0 | Cortex-M4 |\n| --- | --- | --- |")
@@ -142,7 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"| stack of the deepest call, bytes | {c['M0']['stack_bytes']} | "
           f"{c['M4']['stack_bytes']} |")
     print(f"\nCPU load: estimator at {a.imu_hz} Hz + (`ht_step` + output stage "
-          f"[{LAW_OS_INSNS['M0']} / {LAW_OS_INSNS['M4']} instructions, bench.py at 6e5ecb5] + "
+          f"[{law['M0']:.0f} / {law['M4']:.0f} instructions, median, {law_src}] + "
           f"`ht_dcm_output`) at {a.control_hz} Hz; assumed 1.3 cycles per instruction on a "
           f"48 MHz M0, 1.0 on a 168 MHz M4:\n")
     print("| | Cortex-M0 @ 48 MHz | Cortex-M4 @ 168 MHz |\n| --- | --- | --- |")
@@ -151,7 +206,6 @@ def main(argv: list[str] | None = None) -> int:
               f"{c['M4'][key]['percent']:.3f} % |")
         print(f"| {label}: estimator alone | {c['M0'][key]['estimator_percent']:.2f} % | "
               f"{c['M4'][key]['estimator_percent']:.3f} % |")
-    return 0
 
 
 if __name__ == "__main__":

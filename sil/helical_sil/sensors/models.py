@@ -218,6 +218,13 @@ class ImuModel:
         return ImuSample(t_s, g, a, g_sat, a_sat)
 
 
+def _gps_at(g: GpsSample, t_s: float, fresh: bool, fix_3d: bool) -> GpsSample:
+    """g as seen by a call at t_s (dataclasses.replace, a tenth of its cost:
+    the loop calls this every control step)."""
+    return GpsSample(t_s, fix_3d, fresh, g.t_valid_s, g.lat_deg, g.lon_deg, g.alt_msl_m,
+                     g.vel_ned_m_s)
+
+
 class GpsModel:
     """Fixes at epochs k / rate_hz, each delivered latency_s later.
 
@@ -274,10 +281,10 @@ class GpsModel:
             fresh = self.queue.popleft()[1]
         if fresh is not None:
             self.last, self.have_fix = fresh, True
-            return dataclasses.replace(fresh, t_s=t_s, fresh=True)
+            return _gps_at(fresh, t_s, True, fresh.fix_3d)
         if self.last is None:
             return GpsSample(t_s, False, False, math.nan, 0.0, 0.0, 0.0, (0.0, 0.0, 0.0))
-        return dataclasses.replace(self.last, t_s=t_s, fresh=False, fix_3d=self.have_fix)
+        return _gps_at(self.last, t_s, False, self.have_fix)
 
     def set_enabled(self, on: bool) -> None:
         """An outage (False): queued fixes are lost, the fix flag drops."""

@@ -80,13 +80,15 @@ class FdmState:
 def read_fdm_state(fdm: jsbsim.FGFDMExec) -> FdmState:
     """The snapshot of the FDM's current state (after fdm.run())."""
     m_slug = fdm["inertia/mass-slugs"]
-    f = tuple(fdm[f"forces/fb{a}-total-lbs"] / m_slug * FT for a in "xyz")
+    # written out, no generator: the flight loop reads one state per control step
+    f = (fdm["forces/fbx-total-lbs"] / m_slug * FT, fdm["forces/fby-total-lbs"] / m_slug * FT,
+         fdm["forces/fbz-total-lbs"] / m_slug * FT)
     return FdmState(
         phi_rad=fdm["attitude/phi-rad"], theta_rad=fdm["attitude/theta-rad"],
         psi_rad=fdm["attitude/psi-rad"],
         pqr_rad_s=(fdm["velocities/p-rad_sec"], fdm["velocities/q-rad_sec"],
                    fdm["velocities/r-rad_sec"]),
-        f_frd_m_s2=(f[0], f[1], f[2]),
+        f_frd_m_s2=f,
         lat_deg=fdm["position/lat-geod-deg"], lon_deg=fdm["position/long-gc-deg"],
         alt_msl_m=fdm["position/h-sl-ft"] * FT,
         v_ned_m_s=(fdm["velocities/v-north-fps"] * FT, fdm["velocities/v-east-fps"] * FT,

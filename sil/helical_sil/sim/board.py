@@ -228,6 +228,9 @@ class Board:
         self._command = SilCommand()
         self._act = SilActuators()
         self._step = lib.sil_board_step
+        # the step's pointers, made once: per call they cost as much as the C step
+        self._step_args = (self._state, ctypes.byref(self._sensors),
+                           ctypes.byref(self._command), ctypes.byref(self._act))
         self._tx = ctypes.create_string_buffer(LINK_TX_MAX)
 
     @property
@@ -241,8 +244,7 @@ class Board:
     def step(self) -> SilActuators:
         """Run one firmware control step on the current sensors and command. The
         result is the board's own buffer: read it before the next step."""
-        self._step(self._state, ctypes.byref(self._sensors), ctypes.byref(self._command),
-                   ctypes.byref(self._act))
+        self._step(*self._step_args)
         return self._act
 
     # --- ABI 15: the ground-station link (firmware/link/fw_link.h): bytes only ---

@@ -8,6 +8,7 @@ give bit-identical telemetry.
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import math
 import os
 import sys
@@ -23,6 +24,8 @@ from helical_sil.config import params
 from helical_sil.config.scenario import ESTIMATOR_KEYS, Scenario
 from helical_sil.sensors import frames
 from helical_sil.sensors import models as sensors_mod
+from helical_sil.sim import board as board_mod
+from helical_sil.sim import imu_c
 from helical_sil.sim.board import IMU_MAX, Board
 from helical_sil.sim.faults import SensorFaults  # fault campaign (issue 7)
 
@@ -399,6 +402,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     """Fly one scenario; returns the telemetry at the control rate."""
     fdm = make_fdm(sc)
     n_engines = fdm.get_propulsion().get_num_engines()
+    throttle_props = [f"fcs/throttle-cmd-norm[{e}]" for e in range(n_engines)]
     trim_ail, trim_elev, trim_rud = frames.surfaces_from_jsbsim(
         fdm["fcs/aileron-cmd-norm"], fdm["fcs/elevator-cmd-norm"], fdm["fcs/rudder-cmd-norm"])
     trims = {"aileron": float(trim_ail), "elevator": float(trim_elev), "rudder": float(trim_rud),
@@ -417,10 +421,23 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
 
     model = sensor_model(sc)
     use_truth = sc.attitude_source == "truth"
-    state0 = sensors_mod.read_fdm_state(fdm)
-    # the first control step's samples: the state after the trim, n_sub times
-    imu_batch = [model.imu(state0, 0.0)] * (sc.sim_rate_hz // sc.control_rate_hz)
-    imu_fifo: deque[list[sensors_mod.ImuSample]] = deque()
+    # the IMU's per-sample model runs in C (boards/sil/sil_imu_model.c), fed
+    # each sim frame's JSBSim values: the Python model's samples, a fraction
+    # of the cost (imu_c.py)
+    # (board_mod.Board: the library even when a host swaps lockstep.Board, live/pil.py)
+    imu = imu_c.CImu(model._imu, board_mod.Board.library(board_lib))
+    n_sub = sc.sim_rate_hz // sc.control_rate_hz
+    dt_sim = 1.0 / sc.sim_rate_hz
+    frame_rows = (ctypes.c_double * (imu_c.N_IN * n_sub))()
+    frame_props = imu_c.IN_PROPS
+    n_in = imu_c.N_IN
+    frame_rows[0:n_in] = [fdm[name] for name in frame_props]
+    # the first control step's samples: the state after the trim (at t = 0:
+    # -dt + 1 * dt is 0 exactly), n_sub times
+    g0, a0 = imu.run(frame_rows, 1, -dt_sim, dt_sim)
+    imu_batch = (np.repeat(g0, n_sub, axis=0), np.repeat(a0, n_sub, axis=0))
+    imu_fifo: deque[ImuBatch] = deque()
+    seam = ImuSeam(sens_arrays(board.sensors))
     # the legacy gyro errors ([sensors] gyro_*) also act on the IMU samples
     imu_bias = bias if sc.gyro_bias_rad_s > 0.0 else np.zeros(3)
     imu_rng = np.random.Generator(np.random.PCG64([sc.seed, 0x1A1]))
@@ -428,7 +445,6 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
 
     segs = _segments(sc) if sc.modes is None else _mode_segments(sc, rcs)
     rc_ptr = -1
-    n_sub = sc.sim_rate_hz // sc.control_rate_hz
     dt_ctl = 1.0 / sc.control_rate_hz
     steps = int(round(sc.duration_s * sc.control_rate_hz))
     ncol = len(COLUMNS)
@@ -437,7 +453,6 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
     north = east = 0.0
     air_down = 0.0
     steady_wind = any(w != 0.0 for w in (sc.wind_north_m_s, sc.wind_east_m_s, sc.wind_down_m_s))
-    dt_sim = 1.0 / sc.sim_rate_hz
     seg_i = 0
     cmd = board.command
     sens = board.sensors
@@ -524,15 +539,15 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         # the run starts in flight: the estimator starts aligned to JSBSim's
         # attitude, as if aligned on the ground before takeoff (zero bias)
         sens.align_to_truth = int(k == 0)
-        _raw_sensors(sc, sens, model, sensors_mod.read_fdm_state(fdm), t, imu_batch, imu_fifo,
-                     faults, imu_bias, imu_rng)
+        _board_seam(sc, sens, model, sensors_mod.read_fdm_state(fdm), t, imu_batch, imu_fifo,
+                    faults, imu_bias, imu_rng, seam)
         a = board.step()
         ail, elev, rud = frames.surfaces_to_jsbsim(a.aileron, a.elevator, a.rudder)
         fdm["fcs/aileron-cmd-norm"] = ail
         fdm["fcs/elevator-cmd-norm"] = elev
         fdm["fcs/rudder-cmd-norm"] = rud
-        for e in range(n_engines):
-            fdm[f"fcs/throttle-cmd-norm[{e}]"] = a.throttle
+        for throttle_prop in throttle_props:
+            fdm[throttle_prop] = a.throttle
 
         cmd_turn_deg_s = seg.turn_rate_deg_s
         log_alt_hold, log_inv = seg.altitude_hold, seg.inverted
@@ -567,7 +582,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             *(math.degrees(b_) for b_ in a.est_bias_rad_s), float(a.est_flags),
             _angle_deg((a.est_x, a.est_y, a.est_z), (x, y, z)),
             _wrap180(a.est_yaw_deg - math.degrees(psi)), float(gps_on),
-            *(math.degrees(b_) for b_ in model_bias(model, imu_bias)),
+            *(math.degrees(b_) for b_ in true_gyro_bias(imu.gyro_bias, imu.walk_state(),
+                                                        imu_bias)),
             a.nav_airspeed_m_s,
         )
         if steady_wind:
@@ -578,20 +594,20 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             fdm["atmosphere/wind-north-fps"] = ramp * sc.wind_north_m_s / FT
             fdm["atmosphere/wind-east-fps"] = ramp * sc.wind_east_m_s / FT
             fdm["atmosphere/wind-down-fps"] = ramp * sc.wind_down_m_s / FT
-        imu_batch = []
         for j in range(n_sub):
             if not fdm.run():
                 raise SimError(f"JSBSim stopped at t = {fdm['simulation/sim-time-sec']:.2f} s")
             # rectangle rule at the sim rate on the wind after each frame
             air_down += fdm["atmosphere/total-wind-down-fps"] * FT * dt_sim
-            # the IMU samples the frame's state (specific force, rates)
-            try:
-                imu_batch.append(model.imu(sensors_mod.read_fdm_state(fdm),
-                                           t + (j + 1) * dt_sim))
-            except ValueError as e:  # NaN rates or forces: JSBSim's model diverged
-                raise SimError(f"JSBSim's state is not finite at t = "
-                               f"{fdm['simulation/sim-time-sec']:.2f} s (the model diverged): "
-                               f"{e}") from None
+            # the frame's state for the IMU (rates, forces, mass)
+            frame_rows[j * n_in:(j + 1) * n_in] = [fdm[name] for name in frame_props]
+        # the IMU samples each frame's state (one C call for the step's frames)
+        try:
+            imu_batch = imu.run(frame_rows, n_sub, t, dt_sim)
+        except ValueError as e:  # NaN rates or forces: JSBSim's model diverged
+            raise SimError(f"JSBSim's state is not finite at t = "
+                           f"{fdm['simulation/sim-time-sec']:.2f} s (the model diverged): "
+                           f"{e}") from None
         north += vn * dt_ctl
         east += ve * dt_ctl
         agl = fdm["position/h-agl-ft"] * FT
@@ -611,11 +627,13 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
 
 def _angle_deg(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
     """The angle between two vectors (the estimated and the true earth-down)."""
-    na = math.sqrt(sum(v * v for v in a))
-    nb = math.sqrt(sum(v * v for v in b))
+    # the sums written out (no generator: this runs every control step); the
+    # same additions in the same order as sum(), so the same bits
+    na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    nb = math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2])
     if na == 0.0 or nb == 0.0:
         return 180.0
-    c = sum(u * v for u, v in zip(a, b)) / (na * nb)
+    c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb)
     return math.degrees(math.acos(max(-1.0, min(1.0, c))))
 
 
@@ -623,39 +641,70 @@ def _wrap180(d: float) -> float:
     return (d + 180.0) % 360.0 - 180.0
 
 
+def true_gyro_bias(bias: tuple[float, ...], walk: tuple[float, ...],
+                   extra: np.ndarray) -> tuple[float, ...]:
+    """The gyro's true bias now (library axes, rad/s): the model's constant
+    bias and random walk plus the legacy [sensors] gyro_bias_rad_s."""
+    return tuple(float(b + w + e) for b, w, e in zip(bias, walk, extra))
+
+
 def model_bias(model: sensors_mod.SensorModel, extra: np.ndarray) -> tuple[float, ...]:
-    """The gyro's true bias now (library axes, rad/s): the model's own plus the
-    legacy [sensors] gyro_bias_rad_s."""
+    """true_gyro_bias of a Python-sampled model (live/serve.py's loop)."""
     tri = model._imu.gyro  # the model's constant bias and its random walk
-    return tuple(float(b + w + e) for b, w, e in zip(tri.bias, tri.walk_state, extra))
+    return true_gyro_bias(tuple(tri.bias), tuple(tri.walk_state), extra)
+
+
+# One control step's IMU samples: gyro (rad/s) and accel (g), n rows of 3.
+ImuBatch = tuple[np.ndarray, np.ndarray]
+
+
+def sens_arrays(sens: object) -> tuple[np.ndarray, np.ndarray]:
+    """numpy views of the board's IMU sample arrays (SIL_IMU_MAX rows of 3)."""
+    return (np.ctypeslib.as_array(sens.gyro_rad_s),  # type: ignore[attr-defined]
+            np.ctypeslib.as_array(sens.accel_g))  # type: ignore[attr-defined]
+
+
+@dataclass
+class ImuSeam:
+    """Where _board_seam writes a step's IMU samples: views of the board's arrays."""
+    views: tuple[np.ndarray, np.ndarray]
 
 
 def _raw_sensors(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
                  state: sensors_mod.FdmState, t: float, imu_batch: list[sensors_mod.ImuSample],
-                 fifo: deque[list[sensors_mod.ImuSample]], faults: SensorFaults,
+                 fifo: deque[ImuBatch], faults: SensorFaults,
                  bias: np.ndarray, rng: np.random.Generator) -> None:
+    """_board_seam for a list of Python ImuSample (live/serve.py's loop)."""
+    batch = (np.array([s.gyro_rad_s for s in imu_batch], dtype=np.float64).reshape(-1, 3),
+             np.array([s.accel_g for s in imu_batch], dtype=np.float64).reshape(-1, 3))
+    _board_seam(sc, sens, model, state, t, batch, fifo, faults, bias, rng,
+                ImuSeam(sens_arrays(sens)))
+
+
+def _board_seam(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
+                state: sensors_mod.FdmState, t: float, imu_batch: ImuBatch,
+                fifo: deque[ImuBatch], faults: SensorFaults,
+                bias: np.ndarray, rng: np.random.Generator, seam: ImuSeam) -> None:
     """The board seam of one control step: the IMU samples since the previous
     step (delayed by latency_steps), GPS, pitot and baro. The legacy [sensors]
     errors act here too: gyro bias and noise on every sample, the faults'
-    gyro clipping from fault_start_s, the pitot through faults.apply."""
+    gyro clipping from fault_start_s, the pitot through faults.apply.
+    Element by element the arithmetic of the per-sample loop it replaced (the
+    same sums, the noise drawn in the same order: 3 per sample)."""
     fifo.append(imu_batch)
     if len(fifo) > sc.latency_steps + 1:
         fifo.popleft()
-    batch = fifo[0]
-    n = min(len(batch), IMU_MAX)
+    gyro, accel = fifo[0]
+    n = min(len(gyro), IMU_MAX)
     sens.imu_count = n  # type: ignore[attr-defined]
     lim = sc.gyro_saturation_rad_s if t >= sc.fault_start_s - 1e-9 else None
-    b = [float(x) for x in bias]
-    for i in range(n):
-        g = [batch[i].gyro_rad_s[k] + b[k] for k in range(3)]
-        if sc.gyro_noise_rad_s > 0.0:
-            nz = rng.normal(0.0, 1.0, size=3)
-            g = [g[k] + sc.gyro_noise_rad_s * float(nz[k]) for k in range(3)]
-        if lim is not None:
-            g = [min(lim, max(-lim, v)) for v in g]
-        gi, ai, acc = sens.gyro_rad_s[i], sens.accel_g[i], batch[i].accel_g  # type: ignore
-        gi[0], gi[1], gi[2] = g
-        ai[0], ai[1], ai[2] = acc
+    g = gyro[:n] + bias
+    if sc.gyro_noise_rad_s > 0.0:
+        g = g + sc.gyro_noise_rad_s * rng.normal(0.0, 1.0, size=(n, 3))
+    if lim is not None:
+        g = np.minimum(lim, np.maximum(-lim, g))
+    seam.views[0][:n] = g
+    seam.views[1][:n] = accel[:n]
     gps = model.gps(state, t)
     sens.gps_fresh = int(gps.fresh)  # type: ignore[attr-defined]
     sens.gps_fix = 3 if gps.fix_3d else 0  # type: ignore[attr-defined]
