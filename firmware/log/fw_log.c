@@ -183,6 +183,8 @@ static void queue_sensors(fw_log_t *log, uint64_t t, const board_sensors_t *s)
     fw_log_rec_begin(&r, rec, fw_log_format(FW_LOG_GPS)->type);
     fw_log_put_u64(&r, t);
     fw_log_put_u8(&r, s->gps.fix);
+    fw_log_put_u32(&r, 0u); /* GMS: no GPS time on the board seam */
+    fw_log_put_u16(&r, 0u); /* GWk */
     fw_log_put_i32(&r, s->gps.lat_e7);
     fw_log_put_i32(&r, s->gps.lon_e7);
     fw_log_put_i32(&r, s->gps.alt_cm);

@@ -3,7 +3,10 @@
  * characters used (DFReader's sizes): Q uint64, i int32, I uint32, h int16,
  * H uint16, B uint8, M uint8 (a flight mode), L int32 degrees * 1e7,
  * e int32 * 0.01, c int16 * 0.01, C uint16 * 0.01, f binary32, N char[16],
- * Z char[64]. Fixed-point fields are logged raw (their Q format in the
+ * Z char[64]. GPS carries GMS and GWk (the GPS time of week) because
+ * DFReader takes a GPS record without them for an old-style one and fails;
+ * the board seam has no GPS time, so both are 0 (DFReader then keeps the
+ * TimeUS clock). Fixed-point fields are logged raw (their Q format in the
  * label's documentation, docs/flight-log.md) so a replay gets the exact bits.
  */
 #include "log/log_df.h"
@@ -14,7 +17,7 @@ static const fw_log_format_t k_formats[FW_LOG_KIND_COUNT] = {
     {0x81u, 31u, "PARM", "QNf", "TimeUS,Name,Value"},
     {0x82u, 75u, "MSG", "QZ", "TimeUS,Message"},
     {0x83u, 35u, "IMU", "Qiiiiii", "TimeUS,GyrX,GyrY,GyrZ,AccX,AccY,AccZ"},
-    {0x84u, 36u, "GPS", "QBLLeeee", "TimeUS,Status,Lat,Lng,Alt,VelN,VelE,VelD"},
+    {0x84u, 42u, "GPS", "QBIHLLeeee", "TimeUS,Status,GMS,GWk,Lat,Lng,Alt,VelN,VelE,VelD"},
     {0x85u, 16u, "BARO", "QeB", "TimeUS,Alt,Fresh"},
     {0x86u, 14u, "ARSP", "QcB", "TimeUS,Airspeed,Fresh"},
     {0x87u, 23u, "ATT", "QccChhh", "TimeUS,Roll,Pitch,Yaw,DX,DY,DZ"},

@@ -249,7 +249,7 @@ static void test_header_then_steps_with_the_steps_numbers(void)
     TEST_ASSERT_EQUAL_INT32(-65536, (int32_t)le32(&imu[11 + 20]));
     const uint8_t *gps = &imu[35];
     TEST_ASSERT_EQUAL_UINT8(3u, gps[11]);
-    TEST_ASSERT_EQUAL_INT32(473977420, (int32_t)le32(&gps[12]));
+    TEST_ASSERT_EQUAL_INT32(473977420, (int32_t)le32(&gps[18]));
     const uint8_t *rcou = &g_sink.data[g_sink.n - 27u];
     TEST_ASSERT_EQUAL_HEX8(0x8Bu, rcou[2]);
     TEST_ASSERT_EQUAL_UINT16(1000u, (uint16_t)(rcou[11] | (rcou[12] << 8)));
@@ -289,7 +289,7 @@ static void test_budget_bounds_every_call(void)
         TEST_ASSERT_TRUE(g_sink.n - prev <= 200u);
         prev = g_sink.n;
     }
-    /* 200 bytes per 40 Hz step is less than the 264 bytes a step makes:
+    /* 200 bytes per 40 Hz step is less than the 255 bytes a step makes:
      * the ring fills and drops whole records */
     TEST_ASSERT_TRUE(log.dropped > 0u);
     TEST_ASSERT_EQUAL_UINT32(0u, fw_log_flush(&log));

@@ -395,8 +395,10 @@ def _segments(sc: Scenario) -> list[Segment]:
     return [s for s in segs if s.t1 > s.t0 or s is segs[-1]]
 
 
-def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
-    """Fly one scenario; returns the telemetry at the control rate."""
+def run(sc: Scenario, board_lib: str | None = None,
+        log_path: str | os.PathLike[str] | None = None) -> RunResult:
+    """Fly one scenario; returns the telemetry at the control rate. log_path:
+    the firmware's flight log (DataFlash .bin, docs/flight-log.md) goes there."""
     fdm = make_fdm(sc)
     n_engines = fdm.get_propulsion().get_num_engines()
     trim_ail, trim_elev, trim_rud = frames.surfaces_from_jsbsim(
@@ -410,6 +412,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         cfg.update(modes_board_config(sc))
         rcs = rc_timeline(sc, trims["throttle"])
     board = Board(cfg, board_lib)
+    if log_path is not None:
+        board.log_open(log_path)
 
     rng = np.random.Generator(np.random.PCG64(sc.seed))
     bias = sc.gyro_bias_rad_s * rng.choice(np.array([-1.0, 1.0]), size=3)
@@ -606,6 +610,7 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             break
     wall = time.perf_counter() - t_wall
     tel = {name: log[:, i].copy() for i, name in enumerate(COLUMNS)}
+    board.log_close()
     return RunResult(sc, tel, segs, wall, trims, end_reason, end_t)
 
 
