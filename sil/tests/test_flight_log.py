@@ -1,0 +1,140 @@
+"""The SIL's flight log (flight.bin, docs/flight-log.md) read by pymavlink's
+own DFReader, compared with telemetry.csv of the same flight: the same
+control steps, the same numbers to each record's resolution, and every PARM
+equal to the parameter row in force (the scenario's value, rounded to the
+row's format, as binary32)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from pymavlink import DFReader
+
+from helical_sil.config import params as ptable
+from helical_sil.config.scenario import load_scenario
+from helical_sil.sim import lockstep
+from helical_sil.sim.board import MODES_CONFIG_DEFAULTS, table_values
+
+SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
+Q14, Q11, Q16 = 16384.0, 2048.0, 65536.0
+LINK_PREFIX = {"LAW": "LAW_", "DCM": "DCM_", "GUIDE": "GDE_", "ALT": "ALT_", "SPEED": "SPD_",
+               "MODES": "MOD_", "FBW": "FBW_", "NAV": "NAV_", "AOA": "AOA_", "LINK": "LNK_"}
+
+
+def _read(path: Path) -> dict[str, list[Any]]:
+    log = DFReader.DFReader_binary(str(path), zero_time_base=True)
+    out: dict[str, list[Any]] = {}
+    while True:
+        m = log.recv_msg()
+        if m is None:
+            break
+        out.setdefault(m.get_type(), []).append(m)
+    return out
+
+
+@pytest.fixture(scope="module")
+def flight(tmp_path_factory: pytest.TempPathFactory, board_lib: str) -> tuple[Any, Any, dict]:
+    """The RC-loss circuit cut to 75 s (the loss at 60 s): modes, a failsafe."""
+    sc = load_scenario(SCENARIOS / "c172p_circuit_rc_loss.toml")
+    sc.duration_s = 75.0
+    sc.criteria = []
+    out = tmp_path_factory.mktemp("log")
+    res = lockstep.run(sc, board_lib, log_path=out / "flight.bin")
+    lockstep.write_csv(res, out / "telemetry.csv")
+    tel = np.genfromtxt(out / "telemetry.csv", delimiter=",", names=True)
+    return res, tel, _read(out / "flight.bin")
+
+
+def _col(msgs: list[Any], field: str) -> np.ndarray:
+    return np.array([getattr(m, field) for m in msgs], dtype=np.float64)
+
+
+def test_every_control_step_is_logged_once_with_its_time(flight: tuple) -> None:
+    res, tel, log = flight
+    n = len(tel["t_s"])
+    assert n == 75 * res.scenario.control_rate_hz
+    for kind in ("IMU", "GPS", "BARO", "ARSP", "ATT", "HTIN", "HTO", "CTRL", "RCOU"):
+        assert len(log[kind]) == n, kind
+    # TimeUS is the step's clock: the IMU samples so far, the first step's
+    # after its samples (one control period)
+    t_us = _col(log["HTO"], "TimeUS")
+    np.testing.assert_array_equal(t_us, np.round((tel["t_s"] + 1.0 / 40.0) * 1e6))
+    assert log["MSG"][0].Message.startswith("helical flight log")
+
+
+def test_the_estimate_and_the_law_equal_the_telemetry(flight: tuple) -> None:
+    _res, tel, log = flight
+    att, hto, hin, ctrl = log["ATT"], log["HTO"], log["HTIN"], log["CTRL"]
+    # centidegrees ('c'): the estimator's own telemetry angles
+    np.testing.assert_allclose(_col(att, "Roll"), tel["est_roll_deg"], atol=0.005 + 1e-9)
+    np.testing.assert_allclose(_col(att, "Pitch"), tel["est_pitch_deg"], atol=0.005 + 1e-9)
+    # raw Q14 / Q11 / Q16 fields: exact
+    np.testing.assert_array_equal(_col(att, "DX") / Q14, tel["est_x"])
+    np.testing.assert_array_equal(_col(att, "DZ") / Q14, tel["est_z"])
+    np.testing.assert_array_equal(_col(hto, "Ail") / Q14, tel["law_aileron"])
+    np.testing.assert_array_equal(_col(hto, "Elv") / Q14, tel["law_elevator"])
+    np.testing.assert_array_equal(_col(hto, "Rud") / Q14, tel["law_rudder"])
+    np.testing.assert_array_equal(_col(hto, "REr") / Q14, tel["roll_error"])
+    np.testing.assert_array_equal(_col(hto, "PEr") / Q14, tel["pitch_error"])
+    np.testing.assert_allclose(np.degrees(_col(hto, "TrnU") / Q11), tel["turn_rate_used_deg_s"],
+                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(_col(ctrl, "PCmd") / Q16, tel["pitch_cmd"])
+    np.testing.assert_array_equal(_col(hin, "Asp") / 100.0, tel["law_airspeed_m_s"])
+    np.testing.assert_array_equal(_col(hin, "Inv"), tel["inverted"])
+    # the law moved: a test on constants could not fail
+    assert np.ptp(tel["law_aileron"]) > 0.1 and np.ptp(tel["est_roll_deg"]) > 10.0
+
+
+def test_pulses_are_the_surfaces_the_aircraft_got(flight: tuple) -> None:
+    _res, tel, log = flight
+    rcou = log["RCOU"]
+    # the SIL's servos: centre 1500 us, travel 500 us; throttle idle 1000, travel 1000
+    np.testing.assert_allclose((_col(rcou, "C1") - 1500.0) / 500.0, tel["aileron"], atol=1e-12)
+    np.testing.assert_allclose((_col(rcou, "C2") - 1500.0) / 500.0, tel["elevator"], atol=1e-12)
+    np.testing.assert_allclose((_col(rcou, "C3") - 1500.0) / 500.0, tel["rudder"], atol=1e-12)
+    np.testing.assert_allclose((_col(rcou, "C4") - 1000.0) / 1000.0, tel["throttle"], atol=1e-12)
+    np.testing.assert_array_equal(_col(rcou, "C5"), 0.0)  # no fifth channel
+
+
+def test_mode_changes_and_the_failsafe_event(flight: tuple) -> None:
+    _res, tel, log = flight
+    modes = [(m.TimeUS, m.Mode, m.Rsn) for m in log["MODE"]]
+    mode = tel["mode"]
+    changes = [0] + [k for k in range(1, len(mode)) if mode[k] != mode[k - 1]]
+    want = [(round((tel["t_s"][k] + 0.025) * 1e6), int(mode[k]), int(tel["failsafe"][k]))
+            for k in changes]
+    assert modes == want
+    assert any(m[1] == 3 and m[2] == 1 for m in modes)  # RTH for the RC loss
+    ev = [(m.TimeUS, m.Id) for m in log["EV"]]
+    k_fs = int(np.argmax(tel["failsafe"] > 0))
+    assert (round((tel["t_s"][k_fs] + 0.025) * 1e6), 3) in ev
+
+
+def test_every_parm_is_the_row_in_force(flight: tuple) -> None:
+    res, _tel, log = flight
+    sc = res.scenario
+    cfg: dict[str, Any] = dict(lockstep.board_config(sc, res.trims))
+    cfg.update(lockstep.modes_board_config(sc))
+    values = table_values({**MODES_CONFIG_DEFAULTS, **cfg})
+    rows: list[tuple[str, float]] = []
+    for key, _g, group_rows in ptable.BOARD_GROUPS:
+        for p in group_rows:
+            rows.append((LINK_PREFIX[p.group], p.raw(values[key][p.name]) / p.fmt.scale))
+    for p in ptable.TABLE:
+        if p.group == "LINK":
+            rows.append(("LNK_", p.raw(p.default) / p.fmt.scale))
+    parms = log["PARM"]
+    assert len(parms) == len(rows) > 90  # every row of params.def
+    names = [m.Name for m in parms]
+    assert len(set(names)) == len(names)
+    for m, (prefix, value) in zip(parms, rows):
+        assert m.Name.startswith(prefix), m.Name
+        assert m.Value == float(np.float32(value)), (m.Name, m.Value, value)
+    # a value the scenario sets away from its default is there
+    kp = [m.Value for m in parms if m.Name == "LAW_KP_AILERON"]
+    assert kp == [float(np.float32(sc.gains["kp_aileron"]))]
+    assert not math.isnan(sum(m.Value for m in parms))
