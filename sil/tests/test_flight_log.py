@@ -37,7 +37,7 @@ def _read(path: Path) -> dict[str, list[Any]]:
 
 
 @pytest.fixture(scope="module")
-def flight(tmp_path_factory: pytest.TempPathFactory, board_lib: str) -> tuple[Any, Any, dict]:
+def flight(tmp_path_factory: pytest.TempPathFactory, board_lib: str) -> tuple[Any, Any, dict, Path]:
     """The RC-loss circuit cut to 75 s (the loss at 60 s): modes, a failsafe."""
     sc = load_scenario(SCENARIOS / "c172p_circuit_rc_loss.toml")
     sc.duration_s = 75.0
@@ -46,7 +46,7 @@ def flight(tmp_path_factory: pytest.TempPathFactory, board_lib: str) -> tuple[An
     res = lockstep.run(sc, board_lib, log_path=out / "flight.bin")
     lockstep.write_csv(res, out / "telemetry.csv")
     tel = np.genfromtxt(out / "telemetry.csv", delimiter=",", names=True)
-    return res, tel, _read(out / "flight.bin")
+    return res, tel, _read(out / "flight.bin"), out / "flight.bin"
 
 
 def _col(msgs: list[Any], field: str) -> np.ndarray:
@@ -54,7 +54,7 @@ def _col(msgs: list[Any], field: str) -> np.ndarray:
 
 
 def test_every_control_step_is_logged_once_with_its_time(flight: tuple) -> None:
-    res, tel, log = flight
+    res, tel, log, _path = flight
     n = len(tel["t_s"])
     assert n == 75 * res.scenario.control_rate_hz
     for kind in ("IMU", "GPS", "BARO", "ARSP", "ATT", "HTIN", "HTO", "CTRL", "RCOU"):
@@ -67,7 +67,7 @@ def test_every_control_step_is_logged_once_with_its_time(flight: tuple) -> None:
 
 
 def test_the_estimate_and_the_law_equal_the_telemetry(flight: tuple) -> None:
-    _res, tel, log = flight
+    _res, tel, log, _path = flight
     att, hto, hin, ctrl = log["ATT"], log["HTO"], log["HTIN"], log["CTRL"]
     # centidegrees ('c'): the estimator's own telemetry angles
     np.testing.assert_allclose(_col(att, "Roll"), tel["est_roll_deg"], atol=0.005 + 1e-9)
@@ -90,7 +90,7 @@ def test_the_estimate_and_the_law_equal_the_telemetry(flight: tuple) -> None:
 
 
 def test_pulses_are_the_surfaces_the_aircraft_got(flight: tuple) -> None:
-    _res, tel, log = flight
+    _res, tel, log, _path = flight
     rcou = log["RCOU"]
     # the SIL's servos: centre 1500 us, travel 500 us; throttle idle 1000, travel 1000
     np.testing.assert_allclose((_col(rcou, "C1") - 1500.0) / 500.0, tel["aileron"], atol=1e-12)
@@ -101,7 +101,7 @@ def test_pulses_are_the_surfaces_the_aircraft_got(flight: tuple) -> None:
 
 
 def test_mode_changes_and_the_failsafe_event(flight: tuple) -> None:
-    _res, tel, log = flight
+    _res, tel, log, _path = flight
     modes = [(m.TimeUS, m.Mode, m.Rsn) for m in log["MODE"]]
     mode = tel["mode"]
     changes = [0] + [k for k in range(1, len(mode)) if mode[k] != mode[k - 1]]
@@ -115,7 +115,7 @@ def test_mode_changes_and_the_failsafe_event(flight: tuple) -> None:
 
 
 def test_every_parm_is_the_row_in_force(flight: tuple) -> None:
-    res, _tel, log = flight
+    res, _tel, log, _path = flight
     sc = res.scenario
     cfg: dict[str, Any] = dict(lockstep.board_config(sc, res.trims))
     cfg.update(lockstep.modes_board_config(sc))
@@ -138,3 +138,30 @@ def test_every_parm_is_the_row_in_force(flight: tuple) -> None:
     kp = [m.Value for m in parms if m.Name == "LAW_KP_AILERON"]
     assert kp == [float(np.float32(sc.gains["kp_aileron"]))]
     assert not math.isnan(sum(m.Value for m in parms))
+
+
+def test_plot_draws_the_standard_plots_from_the_log(flight: tuple, tmp_path: Path) -> None:
+    from helical_sil.analysis.log_plots import LOG_PLOT_FILES
+    from helical_sil.analysis.log_read import read_log
+    from helical_sil.cli import main
+
+    _res, tel, _log, path = flight
+    assert main(["plot", str(path), "--out", str(tmp_path / "p")]) == 0
+    for name in LOG_PLOT_FILES:
+        assert (tmp_path / "p" / name).stat().st_size > 10000, name
+    # the reader's units: the law's aileron in [-1, 1], the airspeed in m/s
+    d = read_log(path)
+    np.testing.assert_array_equal(d["HTO"]["Ail"], tel["law_aileron"])
+    np.testing.assert_array_equal(d["HTIN"]["Asp"], tel["law_airspeed_m_s"])
+
+
+def test_plot_refuses_what_is_not_a_log(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from helical_sil.cli import main
+
+    bad = tmp_path / "telemetry.csv"
+    bad.write_text("t_s\n0\n")
+    assert main(["plot", str(bad), "--out", str(tmp_path / "p")]) == 2
+    err = capsys.readouterr().err
+    assert "not a DataFlash .bin log" in err and "Traceback" not in err
+    assert main(["plot", str(tmp_path / "none.bin")]) == 2
+    assert "no such file" in capsys.readouterr().err
