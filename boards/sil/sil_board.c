@@ -611,7 +611,7 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
         if (b->after_step != NULL) {
             const uint64_t us =
                 ((uint64_t)b->fw.samples * 1000000u) / (uint64_t)b->cfg.dcm.imu_rate_hz;
-            b->after_step(b->after_step_ctx, &in, &b->out, us);
+            b->after_step(b->after_step_ctx, &b->fw, &in, &b->out, us);
         }
     }
 }

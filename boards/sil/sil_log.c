@@ -52,10 +52,11 @@ static int param_row(void *ctx, uint16_t index, char name[17], int32_t *raw, int
     return 0;
 }
 
-static void after_step(void *ctx, const fw_inputs_t *in, const fw_output_t *out, uint64_t us)
+static void after_step(void *ctx, const fw_t *fw, const fw_inputs_t *in, const fw_output_t *out,
+                       uint64_t us)
 {
     sil_log_t *l = ctx;
-    fw_log_step(&l->log, us, in, out);
+    fw_log_step(&l->log, fw, us, in, out);
 }
 
 static void say(char *err, size_t err_len, const char *what)

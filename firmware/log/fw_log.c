@@ -206,7 +206,17 @@ static void queue_sensors(fw_log_t *log, uint64_t t, const board_sensors_t *s)
     (void)ring_put(log, rec, r.n);
 }
 
-static void queue_control(fw_log_t *log, uint64_t t, const fw_output_t *out)
+/* The controller the step ran (fw_t.law[]): the guided command's pitch
+ * method, else the one the flight modes fly with (fw_step.c). */
+static uint8_t pitch_mode_used(const fw_t *fw, const fw_inputs_t *in)
+{
+    if (in->guided != NULL) {
+        return (in->guided->pitch_mode == (uint8_t)HT_PITCH_TILT_CROSS) ? 1u : 0u;
+    }
+    return ((fw->cfg != NULL) && (fw->cfg->modes_pitch_mode != 0u)) ? 1u : 0u;
+}
+
+static void queue_control(fw_log_t *log, uint64_t t, uint8_t pitch_mode, const fw_output_t *out)
 {
     uint8_t rec[FW_LOG_REC_MAX];
     fw_log_rec_t r;
@@ -235,6 +245,7 @@ static void queue_control(fw_log_t *log, uint64_t t, const fw_output_t *out)
     fw_log_put_i16(&r, li->turn_accel_rad_s2);
     fw_log_put_i16(&r, li->accel_lat_g);
     fw_log_put_u8(&r, li->inverted);
+    fw_log_put_u8(&r, pitch_mode);
     (void)ring_put(log, rec, r.n);
 
     const ht_output_t *lo = &out->law;
@@ -276,7 +287,8 @@ static void queue_control(fw_log_t *log, uint64_t t, const fw_output_t *out)
     (void)ring_put(log, rec, r.n);
 }
 
-void fw_log_step(fw_log_t *log, uint64_t time_us, const fw_inputs_t *in, const fw_output_t *out)
+void fw_log_step(fw_log_t *log, const fw_t *fw, uint64_t time_us, const fw_inputs_t *in,
+                 const fw_output_t *out)
 {
     if ((log == NULL) || (log->ready == 0u)) {
         return;
@@ -284,11 +296,11 @@ void fw_log_step(fw_log_t *log, uint64_t time_us, const fw_inputs_t *in, const f
     if (log->header_done == 0u) {
         queue_header(log, time_us);
     }
-    if ((log->header_done != 0u) && (in != NULL) && (out != NULL)) {
+    if ((log->header_done != 0u) && (fw != NULL) && (in != NULL) && (out != NULL)) {
         queue_events(log, time_us, in, out);
         if (log->decim_count == 0u) {
             queue_sensors(log, time_us, &in->sensors);
-            queue_control(log, time_us, out);
+            queue_control(log, time_us, pitch_mode_used(fw, in), out);
         }
         ++log->decim_count;
         if (log->decim_count >= log->cfg.decimation) {

@@ -4,7 +4,8 @@
  * into a caller's byte sink.
  *
  * How it is fed: after each control step (fw_output_t.control_ran), the
- * host calls fw_log_step with the step's inputs and outputs and its clock.
+ * host calls fw_log_step with the step's state, inputs and outputs and its
+ * clock.
  * The writer builds whole records into a caller-owned ring and hands at most
  * budget_bytes of the ring to the sink's write per call: the time a tick
  * spends logging is bounded whatever the sink (an SD card, a file, a
@@ -85,9 +86,11 @@ typedef struct {
 int fw_log_init(fw_log_t *log, const fw_log_config_t *cfg);
 
 /* After a control step: queue the header (first calls), the step's records
- * and its events, then give the sink at most budget_bytes. NULL in or out:
- * only the sink is served. */
-void fw_log_step(fw_log_t *log, uint64_t time_us, const fw_inputs_t *in, const fw_output_t *out);
+ * and its events, then give the sink at most budget_bytes. fw is the step's
+ * state (its configuration says which pitch method the modes fly). NULL fw,
+ * in or out: only the sink is served. */
+void fw_log_step(fw_log_t *log, const fw_t *fw, uint64_t time_us, const fw_inputs_t *in,
+                 const fw_output_t *out);
 
 /* Give the sink whatever it takes of the ring, without a budget (the end of
  * a flight on a host). Returns the bytes still in the ring. */

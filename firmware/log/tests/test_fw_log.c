@@ -140,6 +140,7 @@ static int walk(const uint8_t *d, size_t n, uint8_t *types, size_t cap)
     return count;
 }
 
+static fw_t g_fw; /* the step's state: only its (absent) configuration is read */
 static fw_inputs_t g_in;
 static fw_output_t g_out;
 
@@ -214,7 +215,7 @@ static void test_header_then_steps_with_the_steps_numbers(void)
     fw_log_config_t c = config(sizeof g_ring, 100000u);
     TEST_ASSERT_EQUAL_INT(0, fw_log_init(&log, &c));
     some_step(0);
-    fw_log_step(&log, 25000u, &g_in, &g_out);
+    fw_log_step(&log, &g_fw, 25000u, &g_in, &g_out);
     uint8_t types[64];
     const int n = walk(g_sink.data, g_sink.n, types, 64u);
     /* 13 FMT, MSG, 3 PARM, MODE, IMU GPS BARO ARSP ATT HTIN HTO CTRL RCOU */
@@ -259,14 +260,14 @@ static void test_header_then_steps_with_the_steps_numbers(void)
     /* a second step with the same mode: no MODE record, 9 records more */
     const size_t before = g_sink.n;
     some_step(1);
-    fw_log_step(&log, 50000u, &g_in, &g_out);
+    fw_log_step(&log, &g_fw, 50000u, &g_in, &g_out);
     TEST_ASSERT_EQUAL_INT(9, walk(&g_sink.data[before], g_sink.n - before, types, 64u));
     /* an RC-loss failsafe: MODE (reason 1) and EV 3 come first */
     const size_t before2 = g_sink.n;
     some_step(2);
     g_out.modes.mode = 3u;
     g_out.modes.failsafe = 1u;
-    fw_log_step(&log, 75000u, &g_in, &g_out);
+    fw_log_step(&log, &g_fw, 75000u, &g_in, &g_out);
     TEST_ASSERT_EQUAL_INT(11, walk(&g_sink.data[before2], g_sink.n - before2, types, 64u));
     TEST_ASSERT_EQUAL_HEX8(0x8Cu, types[0]);
     TEST_ASSERT_EQUAL_UINT8(3u, g_sink.data[before2 + 11u]);
@@ -285,11 +286,11 @@ static void test_budget_bounds_every_call(void)
     size_t prev = 0u;
     for (int k = 0; k < 400; ++k) {
         some_step(k);
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
         TEST_ASSERT_TRUE(g_sink.n - prev <= 200u);
         prev = g_sink.n;
     }
-    /* 200 bytes per 40 Hz step is less than the 255 bytes a step makes:
+    /* 200 bytes per 40 Hz step is less than the 256 bytes a step makes:
      * the ring fills and drops whole records */
     TEST_ASSERT_TRUE(log.dropped > 0u);
     TEST_ASSERT_EQUAL_UINT32(0u, fw_log_flush(&log));
@@ -311,13 +312,13 @@ static void test_full_sink_drops_whole_records(void)
     TEST_ASSERT_EQUAL_INT(0, fw_log_init(&log, &c));
     for (int k = 0; k < 10; ++k) {
         some_step(k);
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
     }
     TEST_ASSERT_EQUAL_UINT32(0u, log.dropped);
     g_sink.take = 0u; /* pulled */
     for (int k = 10; k < 110; ++k) {
         some_step(k);
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
         TEST_ASSERT_TRUE(log.used <= 1000u);
     }
     TEST_ASSERT_TRUE(log.dropped > 800u); /* 100 steps x 9 records, minus what fit */
@@ -325,7 +326,7 @@ static void test_full_sink_drops_whole_records(void)
     g_sink.take = SIZE_MAX; /* back */
     for (int k = 110; k < 120; ++k) {
         some_step(k);
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
     }
     (void)fw_log_flush(&log);
     uint8_t types[1];
@@ -342,7 +343,7 @@ static void test_slow_sink_keeps_the_stream_whole(void)
     TEST_ASSERT_EQUAL_INT(0, fw_log_init(&log, &c));
     for (int k = 0; k < 50; ++k) {
         some_step(k);
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
     }
     TEST_ASSERT_TRUE(log.dropped > 0u);
     g_sink.take = SIZE_MAX;
@@ -362,7 +363,7 @@ static void test_decimation_logs_every_nth_step_and_every_event(void)
     for (int k = 0; k < 8; ++k) {
         some_step(k);
         g_out.guard_engaged = (uint8_t)(k == 2); /* on at 2, off at 3 */
-        fw_log_step(&log, (uint64_t)k * 25000u, &g_in, &g_out);
+        fw_log_step(&log, &g_fw, (uint64_t)k * 25000u, &g_in, &g_out);
     }
     const int n = walk(g_sink.data, g_sink.n, types, 256u);
     /* header 17, MODE, 2 x 9 step records, 2 EV */
@@ -388,10 +389,10 @@ static void test_refused_configurations(void)
     /* a refused log writes nothing and the calls are harmless */
     reset_sink(SIZE_MAX);
     some_step(0);
-    fw_log_step(&log, 0u, &g_in, &g_out);
+    fw_log_step(&log, &g_fw, 0u, &g_in, &g_out);
     TEST_ASSERT_EQUAL_UINT32(0u, fw_log_flush(&log));
     TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)g_sink.n);
-    fw_log_step(NULL, 0u, &g_in, &g_out);
+    fw_log_step(NULL, &g_fw, 0u, &g_in, &g_out);
 }
 
 int main(void)
