@@ -7,6 +7,8 @@ row's format, as binary32)."""
 from __future__ import annotations
 
 import math
+import os
+import subprocess
 from pathlib import Path
 from typing import Any
 
@@ -165,3 +167,68 @@ def test_plot_refuses_what_is_not_a_log(tmp_path: Path, capsys: pytest.CaptureFi
     assert "not a DataFlash .bin log" in err and "Traceback" not in err
     assert main(["plot", str(tmp_path / "none.bin")]) == 2
     assert "no such file" in capsys.readouterr().err
+
+
+def _replay_bin(board_lib: str) -> Path:
+    """ht_replay of the same build tree ($HT_REPLAY_BIN under ctest)."""
+    env = os.environ.get("HT_REPLAY_BIN")
+    p = Path(env) if env else Path(board_lib).resolve().parents[2] / "tools" / "ht_replay"
+    if not p.is_file():
+        if os.environ.get("HT_SIL_REQUIRE_BOARD") == "1":
+            pytest.fail(f"ht_replay not built: {p}")
+        pytest.skip(f"ht_replay not built: {p}")
+    return p
+
+
+def _replay(binary: Path, log: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([str(binary), "--log", str(log)], capture_output=True, text=True,
+                          timeout=60, check=False)
+
+
+def _offsets(data: bytes, name: bytes) -> list[int]:
+    """Byte offsets of every record of a type, walking the log by its FMTs."""
+    lengths = {0x80: 89}
+    type_of: dict[bytes, int] = {}
+    out, off = [], 0
+    while off + 3 <= len(data):
+        t = data[off + 2]
+        if t == 0x80:
+            lengths[data[off + 3]] = data[off + 4]
+            type_of[data[off + 5:off + 9].rstrip(b"\0")] = data[off + 3]
+        elif t == type_of.get(name):
+            out.append(off)
+        off += lengths[t]
+    return out
+
+
+def test_ht_replay_replays_the_law_bit_for_bit(flight: tuple, board_lib: str,
+                                               tmp_path: Path) -> None:
+    _res, tel, _log, path = flight
+    binary = _replay_bin(board_lib)
+    r = _replay(binary, path)
+    assert r.returncode == 0, r.stderr
+    assert f"{len(tel['t_s'])} steps replayed, every law output equal" in r.stdout
+    data = path.read_bytes()
+    # one aileron count changed in one HTO record (the 1000th): found, named
+    hto = _offsets(data, b"HTO")[999]
+    ail = hto + 3 + 8 + 2 + 4 + 2 * 5  # TimeUS, TrnU, Tilt, TX TY TZ REr PEr
+    bad = bytearray(data)
+    bad[ail] ^= 1
+    (tmp_path / "ail.bin").write_bytes(bytes(bad))
+    r = _replay(binary, tmp_path / "ail.bin")
+    assert r.returncode == 1
+    assert "step 1000): HTO.Ail logged" in r.stderr
+    # a different roll gain in the PARM header: the replayed law differs
+    parm = next(o for o in _offsets(data, b"PARM") if data[o + 11:o + 25] == b"LAW_KP_AILERON")
+    bad = bytearray(data)
+    bad[parm + 27:parm + 31] = np.float32(2.5).tobytes()
+    (tmp_path / "kp.bin").write_bytes(bytes(bad))
+    r = _replay(binary, tmp_path / "kp.bin")
+    assert r.returncode == 1 and "HTO." in r.stderr
+    # a log cut in the middle of a record, and a file that is no log
+    (tmp_path / "cut.bin").write_bytes(data[:hto + 10])
+    r = _replay(binary, tmp_path / "cut.bin")
+    assert r.returncode == 1 and "cut short" in r.stderr
+    (tmp_path / "csv.bin").write_bytes(b"t_s,x\n0,1\n")
+    r = _replay(binary, tmp_path / "csv.bin")
+    assert r.returncode == 1 and "byte 0: not a record header" in r.stderr
