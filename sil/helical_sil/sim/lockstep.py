@@ -24,6 +24,7 @@ from helical_sil.config.scenario import ESTIMATOR_KEYS, Scenario
 from helical_sil.sensors import frames
 from helical_sil.sensors import models as sensors_mod
 from helical_sil.sim.board import IMU_MAX, Board
+from helical_sil.sim.board import Board as _SilBoard  # the class itself (live/pil.py swaps Board)
 from helical_sil.sim.faults import SensorFaults  # fault campaign (issue 7)
 
 G = 9.80665
@@ -412,7 +413,9 @@ def run(sc: Scenario, board_lib: str | None = None,
         cfg.update(modes_board_config(sc))
         rcs = rc_timeline(sc, trims["throttle"])
     board = Board(cfg, board_lib)
-    if log_path is not None:
+    # the PIL target's board (live/pil.py) writes no log yet: only the SIL host board
+    logging = log_path is not None and isinstance(board, _SilBoard)
+    if logging:
         board.log_open(log_path)
 
     rng = np.random.Generator(np.random.PCG64(sc.seed))
@@ -610,7 +613,8 @@ def run(sc: Scenario, board_lib: str | None = None,
             break
     wall = time.perf_counter() - t_wall
     tel = {name: log[:, i].copy() for i, name in enumerate(COLUMNS)}
-    board.log_close()
+    if logging:
+        board.log_close()
     return RunResult(sc, tel, segs, wall, trims, end_reason, end_t)
 
 
