@@ -608,6 +608,11 @@ void sil_board_step(sil_board_t *b, const sil_sensors_t *s, const sil_command_t 
         const uint64_t ms =
             ((uint64_t)b->fw.control_steps * 1000u) / (uint64_t)b->cfg.modes.rate_hz;
         fw_link_after_step(&b->link, &b->out, (uint32_t)(ms & UINT32_MAX));
+        if (b->after_step != NULL) {
+            const uint64_t us =
+                ((uint64_t)b->fw.samples * 1000000u) / (uint64_t)b->cfg.dcm.imu_rate_hz;
+            b->after_step(b->after_step_ctx, &b->fw, &in, &b->out, us);
+        }
     }
 }
 

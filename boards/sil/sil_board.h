@@ -192,6 +192,13 @@ typedef struct {
     fw_link_t link; /* ABI 15: the ground-station link (MAVLink 2), on fw and cfg */
     uint8_t modes_enabled;
     uint8_t ready;
+    /* The flight log (boards/sil/sil_log.h) sets this after init: called
+     * after each control step with the step's state, its last inputs, its outputs and
+     * the step's clock (IMU samples so far, in us). NULL: no log. A hook
+     * rather than a call, so that this file does not depend on the log's. */
+    void (*after_step)(void *ctx, const fw_t *fw, const fw_inputs_t *in, const fw_output_t *out,
+                       uint64_t time_us);
+    void *after_step_ctx;
 } sil_board_t;
 
 int sil_board_abi_version(void);

@@ -744,6 +744,20 @@ def _add_serve_parser(sub: Any) -> None:
     s.set_defaults(func=cmd_serve)
 
 
+def cmd_plot(args: argparse.Namespace) -> int:
+    """The standard plots of a flight log (.bin), board or SIL."""
+    from helical_sil.analysis.log_plots import plot_log
+    from helical_sil.analysis.log_read import LogError
+
+    out = Path(args.out) if args.out else Path(args.log).with_suffix("")
+    try:
+        files = plot_log(args.log, out)
+    except LogError as e:
+        raise UsageError(str(e)) from e
+    print(f"wrote {out.resolve()} ({', '.join(f.name for f in files)})")
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="python -m helical_sil", **_HELP,
@@ -804,6 +818,16 @@ def build_parser() -> argparse.ArgumentParser:
                         "directories (with summary.json)")
     c.add_argument("--metrics", nargs="*", help="metric names (default: a standard set)")
     c.set_defaults(func=cmd_compare)
+    pl = sub.add_parser("plot", help="the standard plots of a flight log (.bin)", **_HELP,
+                        description="Draw attitude (command against flown), turn rate, "
+                                    "altitude and airspeed, surfaces and pulses, and the "
+                                    "ground track from a DataFlash flight log (.bin, "
+                                    "docs/flight-log.md) of a board or of the SIL, read "
+                                    "with pymavlink's DFReader.")
+    pl.add_argument("log", help="the flight log (.bin)")
+    pl.add_argument("--out", default=None,
+                    help="output directory (default: the log's path without .bin)")
+    pl.set_defaults(func=cmd_plot)
     _add_upsets_parser(sub)  # fault campaign (issue 7)
     _add_aircraft_parser(sub)
     _add_tune_parser(sub)

@@ -16,6 +16,7 @@
 #include "format.h"
 #include "helical/law/helical_turn.h"
 #include "input_convert.h"
+#include "log_replay.h"
 #include "param_parse.h"
 
 /* Exit statuses (documented in --help and README.md). */
@@ -30,7 +31,13 @@ static void usage(FILE *out)
 {
     static const ht_params_t defaults = HT_PARAMS_DEFAULT;
     (void)fputs("usage: ht_replay [--param NAME=VALUE]... < in.csv > out.csv\n"
+                "       ht_replay --log FLIGHT.bin\n"
                 "       ht_replay --help\n"
+                "\n"
+                "--log: replay a flight log (DataFlash .bin, docs/flight-log.md): each HTIN\n"
+                "record's law inputs through ht_step, with the law parameters of its PARM\n"
+                "records, compared with the logged HTO outputs bit for bit. Exit 0: all\n"
+                "equal; 1: the first difference (or an unreadable log), named; 3: read error.\n"
                 "\n"
                 "Runs the Q14 helical-turn control law (docs/control-law.md) once per input row.\n"
                 "Rows are independent steps; nothing is carried from one row to the next.\n"
@@ -174,6 +181,9 @@ static int run(const ht_controller_t *ctl)
 
 int main(int argc, char **argv)
 {
+    if ((argc == 3) && (strcmp(argv[1], "--log") == 0)) {
+        return ht_log_replay(argv[2], stdout, stderr);
+    }
     ht_params_t params = HT_PARAMS_DEFAULT;
     const char *given[HT_P_COUNT] = {NULL};
     int stop = 0;

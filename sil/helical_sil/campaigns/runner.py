@@ -31,8 +31,9 @@ def run_one(path: Path, out: Path, board_lib: str | None, plots: bool = True,
         sc.seed, sc.name = seed, f"{sc.name}_seed{seed}"
     if attitude is not None:  # --attitude: truth or estimate, whatever the file says
         sc.attitude_source = attitude
-    res = lockstep.run(sc, board_lib)
     out.mkdir(parents=True, exist_ok=True)
+    # the firmware's own flight log, next to telemetry.csv (docs/flight-log.md)
+    res = lockstep.run(sc, board_lib, log_path=out / "flight.bin" if csv else None)
     m = met.run_metrics(res)
     checks = met.evaluate(m, sc.criteria)
     m["pass_criteria"] = checks

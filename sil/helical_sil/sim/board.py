@@ -232,6 +232,7 @@ class Board:
         self._step_args = (self._state, ctypes.byref(self._sensors),
                            ctypes.byref(self._command), ctypes.byref(self._act))
         self._tx = ctypes.create_string_buffer(LINK_TX_MAX)
+        self._log: ctypes.Array[ctypes.c_char] | None = None  # log_open
 
     @property
     def sensors(self) -> SilSensors:
@@ -246,6 +247,26 @@ class Board:
         result is the board's own buffer: read it before the next step."""
         self._step(*self._step_args)
         return self._act
+
+    # --- the flight log (boards/sil/sil_log.h): firmware/log's writer into a file ---
+    def log_open(self, path: str | os.PathLike[str]) -> None:
+        """Log every later control step to path (DataFlash .bin), header first."""
+        lib = self._lib
+        self._log = ctypes.create_string_buffer(int(lib.sil_log_size()))
+        err = ctypes.create_string_buffer(160)
+        if lib.sil_log_open(self._log, self._state, os.fsencode(path), err, len(err)) != 0:
+            self._log = None
+            raise BoardError(f"{err.value.decode()}: {path}")
+
+    def log_close(self) -> int:
+        """Finish the log; returns the records dropped (0 for a file)."""
+        log, self._log = getattr(self, "_log", None), None
+        if log is None:
+            return 0
+        dropped = int(self._lib.sil_log_close(log, self._state))
+        if dropped < 0:
+            raise BoardError("the flight log could not be written completely")
+        return dropped
 
     # --- ABI 15: the ground-station link (firmware/link/fw_link.h): bytes only ---
     def link_rx(self, data: bytes) -> None:
@@ -317,3 +338,11 @@ def _declare(lib: ctypes.CDLL) -> None:
     lib.sil_link_counter_name.argtypes = [ctypes.c_int]
     lib.sil_link_counter.restype = ctypes.c_uint32
     lib.sil_link_counter.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    # the flight log (sil_log.h)
+    lib.sil_log_size.restype = ctypes.c_size_t
+    lib.sil_log_size.argtypes = []
+    lib.sil_log_open.restype = ctypes.c_int
+    lib.sil_log_open.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_char_p,
+                                 ctypes.c_char_p, ctypes.c_size_t]
+    lib.sil_log_close.restype = ctypes.c_int32
+    lib.sil_log_close.argtypes = [ctypes.c_void_p, ctypes.c_void_p]

@@ -27,6 +27,7 @@ from helical_sil.sensors import models as sensors_mod
 from helical_sil.sim import board as board_mod
 from helical_sil.sim import imu_c
 from helical_sil.sim.board import IMU_MAX, Board
+from helical_sil.sim.board import Board as _SilBoard  # the class itself (live/pil.py swaps Board)
 from helical_sil.sim.faults import SensorFaults  # fault campaign (issue 7)
 
 G = 9.80665
@@ -398,8 +399,10 @@ def _segments(sc: Scenario) -> list[Segment]:
     return [s for s in segs if s.t1 > s.t0 or s is segs[-1]]
 
 
-def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
-    """Fly one scenario; returns the telemetry at the control rate."""
+def run(sc: Scenario, board_lib: str | None = None,
+        log_path: str | os.PathLike[str] | None = None) -> RunResult:
+    """Fly one scenario; returns the telemetry at the control rate. log_path:
+    the firmware's flight log (DataFlash .bin, docs/flight-log.md) goes there."""
     fdm = make_fdm(sc)
     n_engines = fdm.get_propulsion().get_num_engines()
     throttle_props = [f"fcs/throttle-cmd-norm[{e}]" for e in range(n_engines)]
@@ -414,6 +417,10 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
         cfg.update(modes_board_config(sc))
         rcs = rc_timeline(sc, trims["throttle"])
     board = Board(cfg, board_lib)
+    # the PIL target's board (live/pil.py) writes no log yet: only the SIL host board
+    logging = log_path is not None and isinstance(board, _SilBoard)
+    if logging:
+        board.log_open(log_path)
 
     rng = np.random.Generator(np.random.PCG64(sc.seed))
     bias = sc.gyro_bias_rad_s * rng.choice(np.array([-1.0, 1.0]), size=3)
@@ -622,6 +629,8 @@ def run(sc: Scenario, board_lib: str | None = None) -> RunResult:
             break
     wall = time.perf_counter() - t_wall
     tel = {name: log[:, i].copy() for i, name in enumerate(COLUMNS)}
+    if logging:
+        board.log_close()
     return RunResult(sc, tel, segs, wall, trims, end_reason, end_t)
 
 
