@@ -243,7 +243,7 @@ static void command(fw_link_t *l, const mavlink_message_t *msg, const command_t 
     case MAV_CMD_COMPONENT_ARM_DISARM:
         /* the image is live from power-up (fw_link_armed): nothing to arm
          * or disarm until the arming work exists */
-        refusal(l, "arm/disarm", "arming not implemented: always armed");
+        refusal(l, "arm", "not implemented, always armed");
         result = (uint8_t)MAV_RESULT_DENIED;
         break;
     case MAV_CMD_PREFLIGHT_STORAGE:
