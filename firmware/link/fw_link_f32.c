@@ -75,7 +75,7 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
 {
     const uint32_t exp_field = (f >> 23u) & 0xFFu;
     const uint32_t frac = f & 0x7FFFFFu;
-    if ((exp_field == 0xFFu) || (out == NULL) || (scale < 1) || (scale > 1048576)) {
+    if ((exp_field == 0xFFu) || (out == NULL) || (scale < 1) || (scale > 16777216)) {
         return -1; /* NaN or infinity (or a bad call) */
     }
     const uint32_t neg = f >> 31u;
@@ -88,12 +88,12 @@ int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
         m = (uint64_t)frac | 0x800000u;
         e = (int)exp_field - 150;
     }
-    const uint64_t p = m * (uint64_t)(uint32_t)scale; /* < 2^44 */
+    const uint64_t p = m * (uint64_t)(uint32_t)scale; /* < 2^48 */
     const uint64_t limit = (neg != 0u) ? 0x80000000ULL : 0x7FFFFFFFULL;
     uint64_t mag = 0u; /* p == 0: zero */
     int status = 0;
     if ((p == 0u) || (e < -62)) {
-        /* +-0, or below 2^44 * 2^-63: less than half a step: zero */
+        /* +-0, or below 2^48 * 2^-63: less than half a step: zero */
     } else if (e >= 0) {
         if ((e >= 32) || (p > (limit >> (unsigned)e))) { /* p * 2^e > limit */
             mag = limit;

@@ -18,6 +18,7 @@
 #include "link/fw_link_mission.h"
 
 #include "link/fw_link_f32.h"
+#include "link/fw_link_text.h"
 #include "link/fw_link_tx.h"
 
 #define ALT_LIMIT_CM (100000 * 100) /* +-100 km, the guidance's bound */
@@ -42,7 +43,18 @@ static void request_item(fw_link_t *l)
     r.target_component = m->partner_compid;
     r.seq = m->next;
     r.mission_type = (uint8_t)MAV_MISSION_TYPE_MISSION;
-    (void)FW_LINK_QUEUE(l, MISSION_REQUEST_INT, r);
+    if (m->legacy != 0u) {
+        /* a station that answers with MISSION_ITEM is asked in its own words */
+        mavlink_mission_request_t rq;
+        (void)memset(&rq, 0, sizeof rq);
+        rq.target_system = r.target_system;
+        rq.target_component = r.target_component;
+        rq.seq = r.seq;
+        rq.mission_type = r.mission_type;
+        (void)FW_LINK_QUEUE(l, MISSION_REQUEST, rq);
+    } else {
+        (void)FW_LINK_QUEUE(l, MISSION_REQUEST_INT, r);
+    }
     m->deadline_ms = l->now_ms + l->params.mission_timeout_ms;
 }
 
@@ -68,70 +80,120 @@ static int32_t cm_to_m(int32_t cm)
     return (cm >= 0) ? ((cm + 50) / 100) : -((50 - cm) / 100);
 }
 
-/* The accepted list into the guidance. 0 = flown; 1 = waits for home;
- * 2 = the guidance refused it (an empty list is flown instead). */
-static int apply_list(fw_link_t *l)
+static int relative(uint8_t frame)
+{
+    return ((frame == (uint8_t)MAV_FRAME_GLOBAL_RELATIVE_ALT_INT) ||
+            (frame == (uint8_t)MAV_FRAME_GLOBAL_RELATIVE_ALT))
+               ? 1
+               : 0;
+}
+
+static void mission_text(fw_link_t *l, uint8_t severity, const char *what, int32_t item)
+{
+    fw_link_text_t t;
+    fw_link_text_start(&t, what);
+    if (item >= 0) {
+        fw_link_text_str(&t, " item ");
+        fw_link_text_int(&t, item);
+    }
+    (void)fw_link_statustext(l, severity, &t);
+}
+
+/* The guidance takes the list flown: the modes re-initialised on it
+ * (ht_modes_init keeps the flight state), the navigation from item 0. */
+static void fly(fw_link_t *l, uint16_t count)
 {
     fw_t *fw = l->fw;
-    if ((l->item_count > 0u) && ((fw->have_home == 0u) || (l->have_home_alt == 0u))) {
+    fw_config_t *cfg = l->cfg;
+    cfg->waypoints = l->waypoints;
+    cfg->waypoint_count = count;
+    const uint8_t pm = (cfg->modes_pitch_mode != 0u) ? 1u : 0u;
+    (void)ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints, cfg->waypoint_count,
+                        &fw->modes_bad);
+    restart_nav(l, 0u);
+}
+
+/*
+ * Replace the list flown by the upload (upload[], upload_count) - whole or
+ * not at all. Converted around home into candidate[] and checked by the
+ * guidance's own rule (ht_nav_init) before anything flown or listed
+ * changes. 0 = flown; 1 = waits for the home position (upload[] kept,
+ * apply_pending); 2 = refused by the guidance (the list flown unchanged;
+ * *bad the item).
+ */
+static int replace_list(fw_link_t *l, uint16_t *bad)
+{
+    fw_t *fw = l->fw;
+    const uint16_t n = l->upload_count;
+    if ((n > 0u) && ((fw->have_home == 0u) || (l->have_home_alt == 0u))) {
         l->mission.apply_pending = 1u;
         return 1;
     }
     l->mission.apply_pending = 0u;
-    for (uint16_t i = 0u; i < l->item_count; ++i) {
-        const fw_link_item_t *it = &l->items[i];
+    for (uint16_t i = 0u; i < n; ++i) {
+        const fw_link_item_t *it = &l->upload[i];
         int32_t n_cm = 0;
         int32_t e_cm = 0;
         ht_geo_to_local(&fw->home, it->lat_e7, it->lon_e7, &n_cm, &e_cm);
-        const int32_t alt_cm = (it->frame == (uint8_t)MAV_FRAME_GLOBAL_RELATIVE_ALT_INT)
-                                   ? (l->home_alt_cm + it->z_cm)
-                                   : it->z_cm;
-        l->waypoints[i].north_m = cm_to_m(n_cm);
-        l->waypoints[i].east_m = cm_to_m(e_cm);
-        l->waypoints[i].alt_m = cm_to_m(alt_cm);
+        const int64_t alt_cm =
+            (relative(it->frame) != 0) ? ((int64_t)l->home_alt_cm + it->z_cm) : it->z_cm;
+        l->candidate[i].north_m = cm_to_m(n_cm);
+        l->candidate[i].east_m = cm_to_m(e_cm);
+        l->candidate[i].alt_m = (int32_t)(alt_cm / 100); /* |z| <= 100 km: no overflow */
     }
-    fw_config_t *cfg = l->cfg;
-    cfg->waypoints = l->waypoints;
-    cfg->waypoint_count = l->item_count;
-    const uint8_t pm = (cfg->modes_pitch_mode != 0u) ? 1u : 0u;
-    int status = 0;
-    if (ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints, cfg->waypoint_count,
-                      &fw->modes_bad) != 0) {
-        cfg->waypoint_count = 0u; /* e.g. a waypoint beyond the guidance's range */
-        (void)ht_modes_init(&fw->modes, &cfg->modes, &fw->law[pm], cfg->waypoints, 0u,
-                            &fw->modes_bad);
-        status = 2;
+    ht_nav_t check;
+    ht_nav_param_id_t field = HT_NAV_P_NONE;
+    uint16_t which = 0u;
+    if ((n > 0u) &&
+        (ht_nav_init(&check, &l->cfg->modes.nav, l->candidate, n, &field, &which) != 0)) {
+        *bad = which; /* e.g. beyond 10 000 km of home */
+        return 2;
     }
-    restart_nav(l, 0u);
-    return status;
+    (void)memcpy(l->waypoints, l->candidate, (size_t)n * sizeof l->waypoints[0]);
+    (void)memcpy(l->items, l->upload, (size_t)n * sizeof l->items[0]);
+    l->item_count = n;
+    fly(l, n);
+    return 0;
 }
 
 /* the item's check: 0, or the MAV_MISSION_RESULT that refuses it */
-static uint8_t check_item(const mavlink_mission_item_int_t *it, fw_link_item_t *out)
+static uint8_t check_item(uint16_t command, uint8_t frame, int32_t lat_e7, int32_t lon_e7,
+                          uint32_t z_bits, fw_link_item_t *out)
 {
-    if (it->command != (uint16_t)MAV_CMD_NAV_WAYPOINT) {
+    if (command != (uint16_t)MAV_CMD_NAV_WAYPOINT) {
         return (uint8_t)MAV_MISSION_UNSUPPORTED;
     }
-    if ((it->frame != (uint8_t)MAV_FRAME_GLOBAL_INT) &&
-        (it->frame != (uint8_t)MAV_FRAME_GLOBAL_RELATIVE_ALT_INT)) {
+    /* 0 / 3 and the superseded 5 / 6: the same datums, the planners write
+     * either (QGroundControl, MAVProxy's WPL files and MAVSDK 0 and 3) */
+    if ((frame != (uint8_t)MAV_FRAME_GLOBAL) && (frame != (uint8_t)MAV_FRAME_GLOBAL_INT) &&
+        (relative(frame) == 0)) {
         return (uint8_t)MAV_MISSION_UNSUPPORTED_FRAME;
     }
-    if ((it->x < -900000000) || (it->x > 900000000)) {
+    if ((lat_e7 < -900000000) || (lat_e7 > 900000000)) {
         return (uint8_t)MAV_MISSION_INVALID_PARAM5_X;
     }
-    if ((it->y < -1800000000) || (it->y > 1800000000)) {
+    if ((lon_e7 < -1800000000) || (lon_e7 > 1800000000)) {
         return (uint8_t)MAV_MISSION_INVALID_PARAM6_Y;
     }
     int32_t z_cm = 0;
-    const uint32_t z = fw_link_get_f32(it, offsetof(mavlink_mission_item_int_t, z));
-    if ((fw_f32_to_fixed(z, 100, &z_cm) != 0) || (z_cm < -ALT_LIMIT_CM) || (z_cm > ALT_LIMIT_CM)) {
+    if ((fw_f32_to_fixed(z_bits, 100, &z_cm) != 0) || (z_cm < -ALT_LIMIT_CM) ||
+        (z_cm > ALT_LIMIT_CM)) {
         return (uint8_t)MAV_MISSION_INVALID_PARAM7;
     }
-    out->lat_e7 = it->x;
-    out->lon_e7 = it->y;
+    out->lat_e7 = lat_e7;
+    out->lon_e7 = lon_e7;
     out->z_cm = z_cm;
-    out->frame = it->frame;
+    out->frame = frame;
     return 0u;
+}
+
+/* the upload stops: nothing flown or listed changes */
+static void cancel_pending(fw_link_t *l)
+{
+    if (l->mission.apply_pending != 0u) {
+        l->mission.apply_pending = 0u;
+        mission_text(l, (uint8_t)MAV_SEVERITY_NOTICE, "mission waiting for GPS replaced", -1);
+    }
 }
 
 static void on_count(fw_link_t *l, const mavlink_message_t *msg)
@@ -143,18 +205,22 @@ static void on_count(fw_link_t *l, const mavlink_message_t *msg)
         return;
     }
     if (c.count > FW_LINK_MAX_WAYPOINTS) {
+        mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused: over 32 items", -1);
         ack(l, msg->sysid, msg->compid, (uint8_t)MAV_MISSION_NO_SPACE, c.mission_type);
         return;
     }
     fw_link_mission_t *m = &l->mission;
+    cancel_pending(l);
     if (c.count == 0u) {
         m->uploading = 0u;
-        l->item_count = 0u;
-        (void)apply_list(l);
+        l->upload_count = 0u;
+        uint16_t bad = 0u;
+        (void)replace_list(l, &bad); /* an empty list needs no home: always flown */
         ack(l, msg->sysid, msg->compid, (uint8_t)MAV_MISSION_ACCEPTED, c.mission_type);
         return;
     }
     m->uploading = 1u; /* a new count restarts an upload in progress */
+    m->legacy = 0u;
     m->partner_sysid = msg->sysid;
     m->partner_compid = msg->compid;
     m->count = c.count;
@@ -163,25 +229,43 @@ static void on_count(fw_link_t *l, const mavlink_message_t *msg)
     request_item(l);
 }
 
-static void on_item(fw_link_t *l, const mavlink_message_t *msg)
+/* an item of the upload, from MISSION_ITEM_INT or the legacy MISSION_ITEM */
+static void on_item(fw_link_t *l, const mavlink_message_t *msg, uint16_t seq, uint16_t command,
+                    uint8_t frame, int32_t lat_e7, int32_t lon_e7, uint32_t z_bits,
+                    uint8_t mission_type, uint8_t bad_xy)
 {
     fw_link_mission_t *m = &l->mission;
-    mavlink_mission_item_int_t it;
-    mavlink_msg_mission_item_int_decode(msg, &it);
-    if ((m->uploading == 0u) || (it.mission_type != (uint8_t)MAV_MISSION_TYPE_MISSION) ||
+    if ((m->uploading == 0u) || (mission_type != (uint8_t)MAV_MISSION_TYPE_MISSION) ||
         (msg->sysid != m->partner_sysid)) {
         fw_link_count(&l->count.rx_bad_content);
         return;
     }
-    if (it.seq != m->next) {
+    if (seq != m->next) {
         fw_link_count(&l->count.rx_bad_content); /* a repeat or out of order: ask again */
         request_item(l);
         return;
     }
-    const uint8_t refused = check_item(&it, &l->upload[it.seq]);
+    uint8_t refused = bad_xy;
+    if (refused == 0u) {
+        refused = check_item(command, frame, lat_e7, lon_e7, z_bits, &l->upload[seq]);
+    }
     if (refused != 0u) {
         m->uploading = 0u;
-        ack(l, m->partner_sysid, m->partner_compid, refused, it.mission_type);
+        fw_link_text_t t;
+        fw_link_text_start(&t, "mission refused: item ");
+        fw_link_text_int(&t, (int32_t)seq);
+        fw_link_text_str(&t, (refused == (uint8_t)MAV_MISSION_UNSUPPORTED)         ? " command "
+                             : (refused == (uint8_t)MAV_MISSION_UNSUPPORTED_FRAME) ? " frame "
+                                                                                   : " bad x/y/z");
+        if (refused == (uint8_t)MAV_MISSION_UNSUPPORTED) {
+            fw_link_text_int(&t, (int32_t)command);
+        } else if (refused == (uint8_t)MAV_MISSION_UNSUPPORTED_FRAME) {
+            fw_link_text_int(&t, (int32_t)frame);
+        } else {
+            /* the result code names the field */
+        }
+        (void)fw_link_statustext(l, (uint8_t)MAV_SEVERITY_WARNING, &t);
+        ack(l, m->partner_sysid, m->partner_compid, refused, mission_type);
         return;
     }
     m->next = (uint16_t)(m->next + 1u);
@@ -191,15 +275,68 @@ static void on_item(fw_link_t *l, const mavlink_message_t *msg)
         return;
     }
     m->uploading = 0u;
-    (void)memcpy(l->items, l->upload, (size_t)m->count * sizeof l->items[0]);
-    l->item_count = m->count;
-    const uint8_t result =
-        (apply_list(l) == 2) ? (uint8_t)MAV_MISSION_ERROR : (uint8_t)MAV_MISSION_ACCEPTED;
-    ack(l, m->partner_sysid, m->partner_compid, result, it.mission_type);
+    l->upload_count = m->count;
+    uint16_t bad = 0u;
+    const int r = replace_list(l, &bad);
+    if (r == 2) {
+        mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused: out of range,",
+                     (int32_t)bad);
+    } else if (r == 1) {
+        mission_text(l, (uint8_t)MAV_SEVERITY_NOTICE, "mission accepted: flown at GPS fix", -1);
+    } else {
+        /* flown */
+    }
+    ack(l, m->partner_sysid, m->partner_compid,
+        (r == 2) ? (uint8_t)MAV_MISSION_ERROR : (uint8_t)MAV_MISSION_ACCEPTED, mission_type);
+}
+
+static void on_item_int(fw_link_t *l, const mavlink_message_t *msg)
+{
+    mavlink_mission_item_int_t it;
+    mavlink_msg_mission_item_int_decode(msg, &it);
+    l->mission.legacy = 0u;
+    on_item(l, msg, it.seq, it.command, it.frame, it.x, it.y,
+            fw_link_get_f32(&it, offsetof(mavlink_mission_item_int_t, z)), it.mission_type, 0u);
+}
+
+/* the legacy MISSION_ITEM: x, y in degrees as floats */
+static void on_item_float(fw_link_t *l, const mavlink_message_t *msg)
+{
+    mavlink_mission_item_t it;
+    mavlink_msg_mission_item_decode(msg, &it);
+    int32_t lat_e7 = 0;
+    int32_t lon_e7 = 0;
+    uint8_t bad = 0u;
+    if (fw_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, x)), 10000000,
+                        &lat_e7) != 0) {
+        bad = (uint8_t)MAV_MISSION_INVALID_PARAM5_X;
+    } else if (fw_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, y)), 10000000,
+                               &lon_e7) != 0) {
+        bad = (uint8_t)MAV_MISSION_INVALID_PARAM6_Y;
+    } else {
+        /* converted */
+    }
+    l->mission.legacy = 1u;
+    on_item(l, msg, it.seq, it.command, it.frame, lat_e7, lon_e7,
+            fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, z)), it.mission_type, bad);
+}
+
+/* The list a download answers: the flown one, or an accepted upload that
+ * waits for the home position (what will be flown). */
+static const fw_link_item_t *listed(const fw_link_t *l, uint16_t *count)
+{
+    if (l->mission.apply_pending != 0u) {
+        *count = l->upload_count;
+        return l->upload;
+    }
+    *count = l->item_count;
+    return l->items;
 }
 
 static void on_request_list(fw_link_t *l, const mavlink_message_t *msg)
 {
+    uint16_t n = 0u;
+    (void)listed(l, &n);
     mavlink_mission_request_list_t r;
     mavlink_msg_mission_request_list_decode(msg, &r);
     mavlink_mission_count_t c;
@@ -207,17 +344,19 @@ static void on_request_list(fw_link_t *l, const mavlink_message_t *msg)
     c.target_system = msg->sysid;
     c.target_component = msg->compid;
     c.mission_type = r.mission_type;
-    c.count = (r.mission_type == (uint8_t)MAV_MISSION_TYPE_MISSION) ? l->item_count : 0u;
+    c.count = (r.mission_type == (uint8_t)MAV_MISSION_TYPE_MISSION) ? n : 0u;
     (void)FW_LINK_QUEUE(l, MISSION_COUNT, c);
 }
 
 static void send_item(fw_link_t *l, const mavlink_message_t *msg, uint16_t seq, uint8_t type)
 {
-    if ((type != (uint8_t)MAV_MISSION_TYPE_MISSION) || (seq >= l->item_count)) {
+    uint16_t n = 0u;
+    const fw_link_item_t *list = listed(l, &n);
+    if ((type != (uint8_t)MAV_MISSION_TYPE_MISSION) || (seq >= n)) {
         ack(l, msg->sysid, msg->compid, (uint8_t)MAV_MISSION_INVALID_SEQUENCE, type);
         return;
     }
-    const fw_link_item_t *s = &l->items[seq];
+    const fw_link_item_t *s = &list[seq];
     mavlink_mission_item_int_t it;
     (void)memset(&it, 0, sizeof it);
     it.target_system = msg->sysid;
@@ -241,7 +380,10 @@ void fw_link_mission_rx(fw_link_t *l, const mavlink_message_t *msg)
         on_count(l, msg);
         break;
     case MAVLINK_MSG_ID_MISSION_ITEM_INT:
-        on_item(l, msg);
+        on_item_int(l, msg);
+        break;
+    case MAVLINK_MSG_ID_MISSION_ITEM:
+        on_item_float(l, msg);
         break;
     case MAVLINK_MSG_ID_MISSION_REQUEST_LIST:
         on_request_list(l, msg);
@@ -263,8 +405,10 @@ void fw_link_mission_rx(fw_link_t *l, const mavlink_message_t *msg)
         mavlink_msg_mission_clear_all_decode(msg, &c);
         if (c.mission_type == (uint8_t)MAV_MISSION_TYPE_MISSION) {
             l->mission.uploading = 0u;
-            l->item_count = 0u;
-            (void)apply_list(l);
+            cancel_pending(l);
+            l->upload_count = 0u;
+            uint16_t bad = 0u;
+            (void)replace_list(l, &bad);
         }
         ack(l, msg->sysid, msg->compid, (uint8_t)MAV_MISSION_ACCEPTED, c.mission_type);
         break;
@@ -289,7 +433,15 @@ void fw_link_mission_after_step(fw_link_t *l)
 {
     fw_link_mission_t *m = &l->mission;
     if ((m->apply_pending != 0u) && (l->have_home_alt != 0u)) {
-        (void)apply_list(l);
+        /* the deferred acceptance: applied, or reported refused (the list
+         * flown before it stays) */
+        uint16_t bad = 0u;
+        if (replace_list(l, &bad) == 2) {
+            mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused at GPS fix,",
+                         (int32_t)bad);
+        } else {
+            mission_text(l, (uint8_t)MAV_SEVERITY_NOTICE, "mission flown from GPS fix", -1);
+        }
     }
     if ((m->uploading != 0u) && (fw_link_reached(l->now_ms, m->deadline_ms) != 0)) {
         if (m->retries < l->params.mission_retries) {

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "link/fw_link_param_table.h"
+#include "link/fw_link_tx.h" /* the MAV_PARAM_TYPE constants */
 
 typedef enum {
     G_LAW = 0,
@@ -291,6 +292,29 @@ int fw_link_param_get_cfg(const fw_config_t *cfg, const fw_link_params_t *link_p
         *row = row_info(g, gid);
     }
     return 0;
+}
+
+uint8_t fw_link_param_mav_type(uint16_t index)
+{
+    int gid = 0;
+    const group_t g = group_of(index, &gid);
+    const ht_param_info_t *info = (g == G_COUNT) ? NULL : row_info(g, gid);
+    if (info == NULL) {
+        return 0u;
+    }
+    if (info->scale != 1) {
+        return (uint8_t)MAV_PARAM_TYPE_REAL32;
+    }
+    switch (rows[index].kind) {
+    case K_U8:
+        return (uint8_t)MAV_PARAM_TYPE_UINT8;
+    case K_U16:
+        return (uint8_t)MAV_PARAM_TYPE_UINT16;
+    case K_I16:
+        return (uint8_t)MAV_PARAM_TYPE_INT16;
+    default:
+        return (uint8_t)MAV_PARAM_TYPE_INT32;
+    }
 }
 
 int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw, const ht_param_info_t **row)

@@ -24,6 +24,10 @@ int fw_link_param_id(uint16_t index, char id[17]);
 /* The index of a param_id (at most 16 characters, need not be terminated),
  * or -1. */
 int32_t fw_link_param_find(const char *id);
+/* The MAV_PARAM_TYPE a row travels as: the integer formats (U8, U16, I16,
+ * I32: scale 1) as MAV_PARAM_TYPE_UINT8 / UINT16 / INT16 / INT32, the
+ * fixed-point ones as MAV_PARAM_TYPE_REAL32; 0 for an index out of range. */
+uint8_t fw_link_param_mav_type(uint16_t index);
 /* A row's value in its stored format, and its table row. 0, or -1. */
 int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw,
                       const ht_param_info_t **row);

@@ -61,7 +61,9 @@ static void heartbeat(fw_link_t *l)
     mavlink_heartbeat_t hb;
     (void)memset(&hb, 0, sizeof hb);
     hb.type = (uint8_t)MAV_TYPE_FIXED_WING;
-    hb.autopilot = (uint8_t)MAV_AUTOPILOT_GENERIC;
+    /* ArduPilot's identity: the clients pick their mode decoder by it
+     * (docs/mavlink.md "Identity"), and custom_mode is ArduPlane's numbering */
+    hb.autopilot = (uint8_t)MAV_AUTOPILOT_ARDUPILOTMEGA;
     const uint8_t mode = fw_link_mode(l);
     uint8_t base = (uint8_t)MAV_MODE_FLAG_CUSTOM_MODE_ENABLED;
     if (mode == (uint8_t)HT_MODE_MANUAL) {
@@ -74,7 +76,7 @@ static void heartbeat(fw_link_t *l)
         base |= (uint8_t)MAV_MODE_FLAG_GUIDED_ENABLED;
         base |= (uint8_t)MAV_MODE_FLAG_AUTO_ENABLED;
     }
-    if ((l->have_output != 0u) && (o->pulse_count > 0u)) {
+    if (fw_link_armed(l) != 0) {
         base |= (uint8_t)MAV_MODE_FLAG_SAFETY_ARMED; /* the servos and the motor are driven */
     }
     hb.base_mode = base;
@@ -407,6 +409,18 @@ static uint32_t interval_ms(const fw_link_t *l, fw_link_stream_t s)
     }
     const uint8_t hz = stream_hz(&l->params, s);
     return (hz == 0u) ? 0u : (1000u / hz);
+}
+
+int32_t fw_link_stream_interval_us(const fw_link_t *l, fw_link_stream_t s)
+{
+    if (s >= FW_LINK_S_COUNT) {
+        return 0;
+    }
+    const int32_t us = l->interval_override_us[s];
+    if (us != 0) {
+        return (us < 0) ? 0 : us;
+    }
+    return (int32_t)(interval_ms(l, s) * 1000u);
 }
 
 void fw_link_telemetry_after_step(fw_link_t *l)

@@ -20,6 +20,8 @@ void fw_link_telemetry_after_step(fw_link_t *l);
 void fw_link_send_stream(fw_link_t *l, fw_link_stream_t s);
 /* The stream a message id belongs to, or FW_LINK_S_COUNT. */
 fw_link_stream_t fw_link_stream_of(uint32_t msgid);
+/* A stream's interval now (MESSAGE_INTERVAL): us; 0 = off. */
+int32_t fw_link_stream_interval_us(const fw_link_t *l, fw_link_stream_t s);
 
 #ifdef __cplusplus
 }

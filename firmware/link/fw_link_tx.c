@@ -35,3 +35,8 @@ uint8_t fw_link_mode(const fw_link_t *l)
 {
     return (l->have_output != 0u) ? l->last.modes.mode : (uint8_t)HT_MODE_MANUAL;
 }
+
+int fw_link_armed(const fw_link_t *l)
+{
+    return ((l->have_output != 0u) && (l->last.pulse_count > 0u)) ? 1 : 0;
+}

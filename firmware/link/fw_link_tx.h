@@ -63,4 +63,10 @@ static inline void fw_link_count(uint32_t *c)
 /* The mode the link reports (ht_mode_t) from the last step. */
 uint8_t fw_link_mode(const fw_link_t *l);
 
+/* The armed state the link reports (HEARTBEAT's SAFETY_ARMED): the firmware
+ * has no arming yet, so it is the truth of the image: armed once the step
+ * drives the outputs (live from power-up). The one place the arming work
+ * replaces (docs/mavlink.md "Arming"). */
+int fw_link_armed(const fw_link_t *l);
+
 #endif /* HT_FW_LINK_TX_H */

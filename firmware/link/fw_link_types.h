@@ -39,7 +39,8 @@ typedef enum {
 typedef struct {
     int32_t lat_e7, lon_e7;
     int32_t z_cm;  /* the item's altitude, as uploaded (frame says its datum) */
-    uint8_t frame; /* MAV_FRAME_GLOBAL_INT or MAV_FRAME_GLOBAL_RELATIVE_ALT_INT */
+    uint8_t frame; /* as uploaded: MAV_FRAME_GLOBAL(_INT) (above mean sea level) or
+                      MAV_FRAME_GLOBAL_RELATIVE_ALT(_INT) (above home) */
 } fw_link_item_t;
 
 /* Transmit queue: whole frames only (a frame that does not fit is counted
@@ -59,7 +60,12 @@ typedef struct {
                                  an unknown parameter, an unsupported command */
     uint32_t tx_frames;       /* frames queued */
     uint32_t tx_overflow;     /* frames not queued: the transmit queue was full */
+    uint32_t tx_text_dropped; /* STATUSTEXT not sent: over the text rate (fw_link_text.h) */
 } fw_link_counters_t;
+
+/* STATUSTEXT rate (fw_link_text.c): a burst of 5, then one per 200 ms. */
+#define FW_LINK_TEXT_BURST     5u
+#define FW_LINK_TEXT_REFILL_MS 200u
 
 /* Board hook: store the configuration persistently (MAV_CMD_PREFLIGHT_STORAGE
  * param1 = 1). Returns 0 on success. NULL: the command is answered
@@ -74,7 +80,8 @@ typedef struct {
     uint16_t next;         /* the item requested */
     uint8_t retries;       /* requests re-sent for this item */
     uint32_t deadline_ms;  /* when the request is re-sent */
-    uint8_t apply_pending; /* an accepted list waits for the home position */
+    uint8_t apply_pending; /* an accepted upload (in upload[]) waits for the home position */
+    uint8_t legacy;        /* the upload came as MISSION_ITEM: requests are MISSION_REQUEST */
     uint16_t last_current; /* the current item last reported (MISSION_ITEM_REACHED) */
 } fw_link_mission_t;
 
@@ -106,9 +113,16 @@ typedef struct {
     /* mission */
     fw_link_mission_t mission;
     fw_link_item_t items[FW_LINK_MAX_WAYPOINTS];  /* the active list (download answers it) */
-    fw_link_item_t upload[FW_LINK_MAX_WAYPOINTS]; /* an upload in progress */
+    fw_link_item_t upload[FW_LINK_MAX_WAYPOINTS]; /* an upload in progress, or accepted and
+                                                     waiting for the home position */
     uint16_t item_count;
+    uint16_t upload_count;                          /* items in upload[] once it is complete */
     ht_waypoint_t waypoints[FW_LINK_MAX_WAYPOINTS]; /* the active list in the guidance's frame */
+    ht_waypoint_t candidate[FW_LINK_MAX_WAYPOINTS]; /* an accepted upload, converted and checked
+                                                       before it replaces waypoints[] */
+    /* STATUSTEXT rate (fw_link_text.c) */
+    uint8_t text_tokens;
+    uint32_t text_refill_ms;
     /* board */
     fw_link_save_fn save;
     void *save_ctx;

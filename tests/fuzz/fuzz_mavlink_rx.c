@@ -7,8 +7,18 @@
  *         into frames with a good CRC (the generated finalize) for one of the
  *         ids the link handles, addressed to it, so that the protocols
  *         themselves are reached with any field values.
+ * Bit 1 of an odd first byte puts the aircraft at rest (airspeed 0), so that
+ * PREFLIGHT_STORAGE reaches the board's hook (a stub that fails every other
+ * call); else it flies at 15 m/s and storage is refused.
  * A firmware step and fw_link_after_step run after every chunk or record.
- * Checks after each (the last two after the whole input):
+ * Checks after each record (one message each):
+ *   - a command addressed to us is answered with one COMMAND_ACK of that
+ *     command (unless the transmit queue overflowed); a refused one (not
+ *     ACCEPTED) changed no parameter row, no mode and no stream interval;
+ *   - a PARAM_SET changed no row but its own; every PARAM_VALUE sent is the
+ *     value in force (the row's rounding of it is the stored value);
+ *   - a MISSION_ACK that refuses left the flown list as it was.
+ * Checks after each chunk or record (the last two after the whole input):
  *   - the drop counters add up (rx_dropped = bad CRC + garbled + unknown id
  *     + wrong target);
  *   - the transmit queue is within its bound and everything the link sends
@@ -42,20 +52,98 @@ static uint32_t now_ms;
 static mavlink_status_t tx_parse;
 static mavlink_message_t tx_msg;
 
-static const uint32_t ids[] = {MAVLINK_MSG_ID_PARAM_REQUEST_LIST,
-                               MAVLINK_MSG_ID_PARAM_REQUEST_READ,
-                               MAVLINK_MSG_ID_PARAM_SET,
-                               MAVLINK_MSG_ID_MISSION_COUNT,
-                               MAVLINK_MSG_ID_MISSION_ITEM_INT,
-                               MAVLINK_MSG_ID_MISSION_REQUEST_LIST,
-                               MAVLINK_MSG_ID_MISSION_REQUEST_INT,
-                               MAVLINK_MSG_ID_MISSION_REQUEST,
-                               MAVLINK_MSG_ID_MISSION_CLEAR_ALL,
-                               MAVLINK_MSG_ID_MISSION_SET_CURRENT,
-                               MAVLINK_MSG_ID_MISSION_ACK,
-                               MAVLINK_MSG_ID_COMMAND_LONG,
-                               MAVLINK_MSG_ID_SET_MODE,
-                               MAVLINK_MSG_ID_HEARTBEAT};
+static const uint32_t ids[] = {MAVLINK_MSG_ID_PARAM_REQUEST_LIST, MAVLINK_MSG_ID_PARAM_REQUEST_READ,
+                               MAVLINK_MSG_ID_PARAM_SET, MAVLINK_MSG_ID_MISSION_COUNT,
+                               MAVLINK_MSG_ID_MISSION_ITEM_INT, MAVLINK_MSG_ID_MISSION_REQUEST_LIST,
+                               MAVLINK_MSG_ID_MISSION_REQUEST_INT, MAVLINK_MSG_ID_MISSION_REQUEST,
+                               MAVLINK_MSG_ID_MISSION_CLEAR_ALL, MAVLINK_MSG_ID_MISSION_SET_CURRENT,
+                               MAVLINK_MSG_ID_MISSION_ACK, MAVLINK_MSG_ID_COMMAND_LONG,
+                               MAVLINK_MSG_ID_SET_MODE, MAVLINK_MSG_ID_HEARTBEAT,
+                               /* appended: the seeds' selectors above keep their ids */
+                               MAVLINK_MSG_ID_COMMAND_INT, MAVLINK_MSG_ID_MISSION_ITEM};
+
+#define MAX_ROWS 256u
+static int32_t rows_before[MAX_ROWS];
+static ht_waypoint_t wps_before[FW_LINK_MAX_WAYPOINTS];
+static uint16_t wp_count_before;
+/* what the link sent since the last snapshot */
+static unsigned acks_seen, acks_refused, mission_refused;
+static uint16_t ack_command;
+static int saves;
+static int record_mode; /* one message per record: the per-message checks apply */
+
+static int save_stub(void *ctx, const fw_config_t *c, const fw_link_params_t *p)
+{
+    (void)ctx;
+    (void)c;
+    (void)p;
+    ++saves;
+    return saves % 2; /* every other write fails */
+}
+
+static void snapshot(void)
+{
+    check(fw_link_param_count() <= MAX_ROWS);
+    for (uint16_t i = 0u; i < fw_link_param_count(); ++i) {
+        check(fw_link_param_get(&lk, i, &rows_before[i], NULL) == 0);
+    }
+    wp_count_before = cfg.waypoint_count;
+    if ((cfg.waypoints != NULL) && (cfg.waypoint_count <= FW_LINK_MAX_WAYPOINTS)) {
+        memcpy(wps_before, cfg.waypoints, cfg.waypoint_count * sizeof wps_before[0]);
+    }
+    acks_seen = 0u;
+    acks_refused = 0u;
+    mission_refused = 0u;
+}
+
+/* the rows that differ from the snapshot, but except (-1: none excepted) */
+static unsigned rows_changed(int32_t except)
+{
+    unsigned n = 0u;
+    for (uint16_t i = 0u; i < fw_link_param_count(); ++i) {
+        int32_t raw = 0;
+        check(fw_link_param_get(&lk, i, &raw, NULL) == 0);
+        n += ((raw != rows_before[i]) && ((int32_t)i != except)) ? 1u : 0u;
+    }
+    return n;
+}
+
+static int waypoints_unchanged(void)
+{
+    return (cfg.waypoint_count == wp_count_before) &&
+           ((wp_count_before == 0u) ||
+            (memcmp(wps_before, cfg.waypoints, wp_count_before * sizeof wps_before[0]) == 0));
+}
+
+/* a frame the link sent: the checks on its content */
+static void sent(const mavlink_message_t *m)
+{
+    if (m->msgid == MAVLINK_MSG_ID_COMMAND_ACK) {
+        mavlink_command_ack_t a;
+        mavlink_msg_command_ack_decode(m, &a);
+        ++acks_seen;
+        ack_command = a.command;
+        acks_refused += (a.result != MAV_RESULT_ACCEPTED) ? 1u : 0u;
+    } else if (m->msgid == MAVLINK_MSG_ID_MISSION_ACK) {
+        mavlink_mission_ack_t a;
+        mavlink_msg_mission_ack_decode(m, &a);
+        mission_refused += (a.type != MAV_MISSION_ACCEPTED) ? 1u : 0u;
+    } else if ((m->msgid == MAVLINK_MSG_ID_PARAM_VALUE) && (record_mode != 0)) {
+        /* the value in force: the row's rounding of it is what is stored */
+        mavlink_param_value_t pv;
+        mavlink_msg_param_value_decode(m, &pv);
+        int32_t raw = 0;
+        const ht_param_info_t *row = NULL;
+        check(fw_link_param_get(&lk, pv.param_index, &raw, &row) == 0 && row != NULL);
+        check(pv.param_type == fw_link_param_mav_type(pv.param_index));
+        uint32_t bits;
+        memcpy(&bits, &pv.param_value, sizeof bits);
+        int32_t echoed = 0;
+        check(fw_f32_to_fixed(bits, row->scale, &echoed) == 0 && echoed == raw);
+    } else {
+        /* telemetry */
+    }
+}
 
 static void start(void)
 {
@@ -78,6 +166,8 @@ static void start(void)
         in.rc_us[i] = 1500u;
     }
     in.rc_fresh = 1u;
+    lk.save = save_stub;
+    saves = 0;
     now_ms = 0u;
     memset(&tx_parse, 0, sizeof tx_parse);
 }
@@ -100,6 +190,9 @@ static void step_and_check(void)
         for (size_t i = 0u; i < n; ++i) {
             const uint8_t r = mavlink_frame_char_buffer(&tx_msg, &tx_parse, buf[i], NULL, NULL);
             check(r != MAVLINK_FRAMING_BAD_CRC && r != MAVLINK_FRAMING_BAD_SIGNATURE);
+            if (r == MAVLINK_FRAMING_OK) {
+                sent(&tx_msg);
+            }
         }
     }
     check(fw.ready == 1u && fw.modes.ready == 1u && out.pulse_count == cfg.out.count);
@@ -119,9 +212,16 @@ static void check_config(void)
     check(fw_init(&scratch, &cfg) == 1);
 }
 
+/* what a record sent: the id, to us or not, a PARAM_SET's row */
+static uint32_t rec_id;
+static int rec_to_us;
+static int32_t rec_param_row;
+static uint16_t rec_command;
+
 /* a record packed into a frame with a good CRC, addressed to the link */
 static size_t record(const uint8_t *d, size_t n)
 {
+    rec_id = UINT32_MAX;
     if (n < 2u) {
         return n;
     }
@@ -153,6 +253,27 @@ static size_t record(const uint8_t *d, size_t n)
                                           e->crc_extra);
     uint8_t frame[MAVLINK_MAX_PACKET_LEN];
     const uint16_t fl = mavlink_msg_to_send_buffer(frame, &m);
+    rec_id = id;
+    rec_to_us = ((d[0] & 0x80u) == 0u) ? 1 : 0;
+    rec_param_row = -1;
+    rec_command = 0u;
+    if (id == MAVLINK_MSG_ID_PARAM_SET) {
+        mavlink_param_set_t ps;
+        mavlink_msg_param_set_decode(&m, &ps);
+        rec_param_row = fw_link_param_find(ps.param_id);
+    } else if (id == MAVLINK_MSG_ID_COMMAND_LONG) {
+        mavlink_command_long_t c;
+        mavlink_msg_command_long_decode(&m, &c);
+        rec_command = c.command;
+    } else if (id == MAVLINK_MSG_ID_COMMAND_INT) {
+        mavlink_command_int_t c;
+        mavlink_msg_command_int_decode(&m, &c);
+        rec_command = c.command;
+    } else if (id == MAVLINK_MSG_ID_SET_MODE) {
+        rec_command = MAV_CMD_DO_SET_MODE;
+    } else {
+        /* no command */
+    }
     fw_link_rx(&lk, frame, fl);
     return 2u + len;
 }
@@ -164,6 +285,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     start();
     const uint8_t mode = data[0];
+    record_mode = ((mode & 1u) != 0u) ? 1 : 0;
     data++;
     size--;
     if ((mode & 1u) == 0u) {
@@ -173,10 +295,35 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             step_and_check();
         }
     } else {
+        if ((mode & 2u) != 0u) {
+            in.sensors.airspeed_cm_s = 0; /* at rest: storage reaches the hook */
+        }
         size_t i = 0u;
         while (i < size) {
+            snapshot();
+            const uint8_t gcs_mode = fw.gcs_mode;
+            int32_t intervals[FW_LINK_S_COUNT];
+            memcpy(intervals, lk.interval_override_us, sizeof intervals);
+            const uint32_t overflow = lk.count.tx_overflow;
             i += record(&data[i], size - i);
             step_and_check();
+            const int command = (rec_id == MAVLINK_MSG_ID_COMMAND_LONG) ||
+                                (rec_id == MAVLINK_MSG_ID_COMMAND_INT) ||
+                                (rec_id == MAVLINK_MSG_ID_SET_MODE);
+            if (command && rec_to_us && (lk.count.tx_overflow == overflow)) {
+                /* every command answered, once, with its own number */
+                check(acks_seen == 1u && ack_command == rec_command);
+                if (acks_refused != 0u) {
+                    check(rows_changed(-1) == 0u && fw.gcs_mode == gcs_mode &&
+                          memcmp(intervals, lk.interval_override_us, sizeof intervals) == 0);
+                }
+            }
+            if (rec_id == MAVLINK_MSG_ID_PARAM_SET) {
+                check(rows_changed(rec_param_row) == 0u); /* no row but its own */
+            }
+            if (mission_refused != 0u) {
+                check(waypoints_unchanged()); /* a refusal leaves the flown list */
+            }
         }
     }
     check_config();

@@ -55,8 +55,9 @@ class ServeError(ValueError):
 
 @dataclass(frozen=True)
 class Endpoint:
-    """udpout: send to a ground station listening at host:port (its replies'
-    address is learned); udpin: listen at host:port, answer whoever sent last."""
+    """udpout: send to a ground station listening at host:port and hear only
+    datagrams from that address; udpin: listen at host:port, answer whoever
+    sent last."""
     kind: str
     host: str
     port: int
@@ -90,6 +91,7 @@ class LinkStats:
     bytes_out: int = 0
     send_errors: int = 0  # nobody listening (ICMP port unreachable), no route
     bytes_unsent: int = 0  # udpin before any ground station spoke: no address yet
+    datagrams_foreign: int = 0  # udpout: from another address than the configured peer, dropped
 
 
 class UdpLink:
@@ -116,7 +118,10 @@ class UdpLink:
         return self._peer
 
     def receive(self) -> Iterator[bytes]:
-        """Every datagram waiting; the sender becomes the address answers go to."""
+        """Every datagram waiting. udpin: the sender becomes the address answers go
+        to. udpout: only the configured peer is heard; a datagram from any other
+        address is dropped (counted), so no local process can redirect the telemetry
+        or command the aircraft (issue 33 item 9)."""
         while True:
             try:
                 data, addr = self._sock.recvfrom(65535)
@@ -125,7 +130,11 @@ class UdpLink:
             except OSError:  # e.g. ECONNREFUSED from an earlier send: nothing to read
                 self.stats.send_errors += 1
                 continue
-            self._peer = (addr[0], addr[1])
+            if self.endpoint.kind == "udpin":
+                self._peer = (addr[0], addr[1])
+            elif (addr[0], addr[1]) != self._peer:
+                self.stats.datagrams_foreign += 1
+                continue
             self.stats.datagrams_in += 1
             self.stats.bytes_in += len(data)
             yield data
