@@ -35,7 +35,8 @@ uint32_t ht_tas_per_ias_q14(int32_t pressure_alt_cm, int16_t temp_cdeg, uint8_t 
 {
     const int32_t h = q_clamp32(pressure_alt_cm, HT_AIR_ALT_MIN_CM, HT_AIR_ALT_MAX_CM);
     const int32_t from_base = h - HT_AIR_ALT_MIN_CM; /* [0, 2.1e6] */
-    uint32_t k = (uint32_t)(from_base / AIR_STEP_CM);
+    const int32_t node = from_base / AIR_STEP_CM;
+    uint32_t k = (uint32_t)node;
     if (k >= (AIR_NODES - 1u)) {
         k = AIR_NODES - 2u; /* the top node: interpolate in the last interval */
     }
@@ -49,7 +50,8 @@ uint32_t ht_tas_per_ias_q14(int32_t pressure_alt_cm, int16_t temp_cdeg, uint8_t 
         return (uint32_t)f;
     }
     /* sigma scales with 1 / T: TAS / IAS with sqrt(T / T_isa) */
-    const uint32_t t_ck = (uint32_t)((int32_t)temp_cdeg + 27315);   /* [19315, 35815] */
+    const int32_t t_ck_s = (int32_t)temp_cdeg + 27315; /* [19315, 35815] */
+    const uint32_t t_ck = (uint32_t)t_ck_s;
     const uint32_t isa_ck = (uint32_t)isa_temp_ck(h);               /* [21665, 29465] */
     const uint32_t r_q16 = ((t_ck << 16) + (isa_ck / 2u)) / isa_ck; /* < 2.35e9 + : uint32 */
     const uint32_t s_q14 = q_isqrt32_round(r_q16 << 12);            /* sqrt of Q28: Q14 */
@@ -65,5 +67,8 @@ int16_t ht_true_airspeed_cm_s(int16_t ias_cm_s, int32_t pressure_alt_cm, int16_t
     const uint32_t f = ht_tas_per_ias_q14(pressure_alt_cm, temp_cdeg, temp_valid);
     /* 32767 x 78800 < 2^32 */
     const uint32_t tas = (((uint32_t)ias_cm_s * f) + 8192u) >> 14;
-    return (tas > (uint32_t)INT16_MAX) ? (int16_t)INT16_MAX : (int16_t)tas;
+    if (tas > (uint32_t)INT16_MAX) {
+        return (int16_t)INT16_MAX;
+    }
+    return (int16_t)tas;
 }
