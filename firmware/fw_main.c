@@ -69,6 +69,11 @@ int main(void)
     static fw_output_t out;
     static fw_link_t link;
     fw_config_default(&config);
+    /* the joint check (config_check.h) judges every input against the
+     * receiver this board has; before the board's own configuration, which
+     * may load a stored set and check it */
+    const uint8_t rc_channels = board_rc_count();
+    config.modes.rc_channels = (rc_channels > FW_RC_MAX) ? (uint8_t)FW_RC_MAX : rc_channels;
     fw_board_config(&config);
     board_config_t board = BOARD_CONFIG_DEFAULT;
     board.control_hz = config.dcm.imu_rate_hz; /* one board tick per IMU sample */

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "helical/estimator/air_data.h"
+
 /* --- configuration ---------------------------------------------------------- */
 
 void fw_config_default(fw_config_t *cfg)
@@ -171,8 +173,16 @@ static void estimate(fw_t *fw, const fw_inputs_t *in)
     const fw_config_t *cfg = fw->cfg;
     const board_gps_t *g = &in->sensors.gps;
     const uint8_t fix3 = (g->fix >= 3u) ? 1u : 0u;
+    if (in->sensors.baro_fresh != 0u) {
+        fw->pressure_alt_cm = in->sensors.baro_alt_cm;
+        fw->air_temp_valid = in->sensors.baro_temp_valid;
+        fw->air_temp_cdeg = in->sensors.baro_temp_cdeg;
+    }
     if (in->sensors.airspeed_fresh != 0u) {
-        fw->pitot_cm_s = in->sensors.airspeed_cm_s;
+        /* the board gives the pitot's indicated airspeed: true once, here,
+         * with the latest baro (sea level until the first), for every user */
+        fw->pitot_cm_s = ht_true_airspeed_cm_s(in->sensors.airspeed_cm_s, fw->pressure_alt_cm,
+                                               fw->air_temp_cdeg, fw->air_temp_valid);
         fw->airspeed_live = 1u;
     }
     if (in->sensors.imu_fresh != 0u) {

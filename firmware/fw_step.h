@@ -174,7 +174,10 @@ typedef struct {
     uint16_t divider_count;
     uint16_t imu_age;
     uint8_t aligned, have_home, have_baro, airspeed_live, pitot_suspect;
-    int16_t pitot_cm_s; /* the last pitot reading */
+    int16_t pitot_cm_s;      /* the last pitot reading, made true (air_data.h) */
+    int32_t pressure_alt_cm; /* the last baro reading (0 before one): the pitot's density */
+    int16_t air_temp_cdeg;
+    uint8_t air_temp_valid;
     uint8_t ready;
     uint8_t bad;     /* fw_bad_block_t */
     int32_t bad_sub; /* the block's own field id */

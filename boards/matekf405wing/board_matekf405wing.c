@@ -109,6 +109,10 @@ static void params_report(void)
         matek_console_puts(", field ");
         matek_console_put_i32(r->bad_sub);
         matek_console_puts(")");
+        if (r->reason[0] != '\0') {
+            matek_console_puts(": ");
+            matek_console_puts(r->reason);
+        }
     } else {
         /* nothing more to say */
     }

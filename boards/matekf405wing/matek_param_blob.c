@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "crc32.h"
+#include "helical/guidance/config_check.h"
 
 static uint32_t rd32(const uint8_t *p)
 {
@@ -95,6 +96,33 @@ static int32_t index_of(const ht_param_info_t *info)
 }
 
 /* The table row of the modes' refusal (theirs, or a sub-module's). */
+/* The row a joint rule names (config_check.h), or NULL (the sticks: not rows) */
+static const ht_param_info_t *joint_row(ht_cfg_status_t s)
+{
+    const ht_param_info_t *row;
+    switch (s) {
+    case HT_CFG_MODE_ABSENT:
+    case HT_CFG_MODE_ON_STICK:
+        row = ht_modes_param_info(HT_MODES_P_MODE_INPUT);
+        break;
+    case HT_CFG_INVERTED_ABSENT:
+    case HT_CFG_INVERTED_ON_STICK:
+    case HT_CFG_INVERTED_ON_MODE:
+        row = ht_fbw_param_info(HT_FBW_P_INVERTED_INPUT);
+        break;
+    case HT_CFG_INVERTED_THRESHOLD:
+        row = ht_fbw_param_info(HT_FBW_P_INVERTED_THRESHOLD);
+        break;
+    case HT_CFG_ARRIVAL_RADIUS:
+        row = ht_nav_param_info(HT_NAV_P_ARRIVAL_RADIUS);
+        break;
+    default:
+        row = NULL;
+        break;
+    }
+    return row;
+}
+
 static const ht_param_info_t *modes_row(const ht_modes_bad_t *bad)
 {
     const ht_param_info_t *row;
@@ -113,6 +141,9 @@ static const ht_param_info_t *modes_row(const ht_modes_bad_t *bad)
         break;
     case HT_MODES_P_SPEED_HOLD:
         row = ht_speed_hold_param_info((ht_speed_param_id_t)bad->sub);
+        break;
+    case HT_MODES_P_JOINT:
+        row = joint_row((ht_cfg_status_t)bad->sub);
         break;
     default:
         row = ht_modes_param_info(bad->field);
@@ -192,6 +223,9 @@ static int put_and_check(const fw_config_t *cfg, const fw_link_params_t *link_pa
         rep->bad_sub = ((fw_bad_block_t)check_fw.bad == FW_BAD_MODES)
                            ? (int32_t)check_fw.modes_bad.sub
                            : check_fw.bad_sub;
+        if ((fw_bad_block_t)check_fw.bad == FW_BAD_MODES) {
+            ht_modes_bad_name(&check_fw.modes_bad, rep->reason, (unsigned)sizeof rep->reason);
+        }
         refuse(rep, MATEK_BAD_INIT, index_of(refused_row(&check_fw)));
         return 0;
     }

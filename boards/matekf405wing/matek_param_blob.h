@@ -85,6 +85,8 @@ typedef struct {
                           the field is a sub-module's); MATEK_BAD_LINK: the link's id */
     int32_t bad_index; /* REFUSED: the link row (0-based) the check names, or -1 */
     char bad_id[17];   /* its param_id ("" when bad_index is -1) */
+    char reason[50];   /* MATEK_BAD_INIT of the modes: ht_modes_bad_name, e.g. the joint
+                          rule "joint.mode_input is a stick channel" (config_check.h) */
 } matek_params_report_t;
 
 /*

@@ -18,7 +18,8 @@
 static stm32_flash_t flash;
 static param_flash_t pflash;
 static uint8_t flash_ok;
-static matek_params_report_t report = {(uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0u, 0u, 0, -1, ""};
+static matek_params_report_t report = {
+    (uint8_t)MATEK_PARAMS_CORRUPT, 0u, 0u, 0u, 0u, 0, -1, "", ""};
 static fw_link_params_t stored_link; /* the link's rows of the stored set */
 static uint8_t link_loaded;
 

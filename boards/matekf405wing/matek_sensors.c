@@ -263,6 +263,9 @@ board_status_t board_sensors_read(board_sensors_t *out)
             if (bmp280_read(&baro) == BMP280_OK) {
                 out->baro_fresh = 1u;
                 out->baro_alt_cm = baro.alt_cm;
+                /* the static temperature: the step's pitot density (air_data.h) */
+                out->baro_temp_valid = 1u;
+                out->baro_temp_cdeg = (int16_t)baro.reading.temp_cdeg;
             }
         } else if ((reads % RETRY_TICKS) == 0u && reads != 0u) {
             baro_start();

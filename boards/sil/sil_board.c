@@ -354,6 +354,7 @@ int sil_board_init(sil_board_t *b, const sil_config_t *cfg, char *err, size_t er
     (void)memset(b, 0, sizeof(*b));
     fw_config_t *fc = &b->cfg;
     fw_config_default(fc);
+    fc->modes.rc_channels = (uint8_t)SIL_RC_COUNT; /* the scripted receiver's (config_check.h) */
     if (cfg->control_rate_hz < 1 || cfg->control_rate_hz > 1000) {
         return fail(err, err_len, "control_rate_hz");
     }

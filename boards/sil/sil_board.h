@@ -104,7 +104,8 @@ typedef struct {
     double gps_lat_deg, gps_lon_deg, gps_alt_m;
     double gps_vel_ned_m_s[3];
     int32_t airspeed_fresh;
-    double pitot_m_s;
+    double
+        pitot_m_s; /* INDICATED airspeed, as the pitot driver gives it (the step makes it true) */
     int32_t baro_fresh;
     double baro_alt_m;
     /* truth */

@@ -60,6 +60,9 @@ void hil_fw_init(hil_fw_t *h)
     const hil_msg_table_t table = {h->rx_len, (uint8_t)HIL_ID_HOST_COUNT};
     hil_decoder_init(&h->rx, table);
     fw_config_default(&h->cfg);
+    /* the receiver of the host it mirrors: the SIL board's scripted one
+     * (boards/sil SIL_RC_COUNT; test_hil_fw compares the configurations) */
+    h->cfg.modes.rc_channels = 8u;
 }
 
 void hil_fw_send_ready(hil_fw_t *h)

@@ -389,6 +389,23 @@ static int reinit_group(fw_link_t *l, group_t g)
     }
 }
 
+/* "<PARAM_ID><tail>" into the refusal text (49 characters at most) */
+static void refusal_of_row(fw_link_t *l, uint16_t index, const char *tail)
+{
+    char id[17];
+    (void)fw_link_param_id(index, id);
+    size_t n = 0u;
+    for (const char *c = id; (*c != '\0') && (n < 16u); ++c) {
+        l->param_refusal[n] = *c;
+        ++n;
+    }
+    for (const char *c = tail; (*c != '\0') && ((n + 1u) < sizeof l->param_refusal); ++c) {
+        l->param_refusal[n] = *c;
+        ++n;
+    }
+    l->param_refusal[n] = '\0';
+}
+
 int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw)
 {
     int gid = 0;
@@ -396,15 +413,25 @@ int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw)
     if ((l == NULL) || (l->cfg == NULL) || (l->fw == NULL) || (g == G_COUNT)) {
         return -1;
     }
+    l->param_refusal[0] = '\0';
     const ht_param_info_t *info = row_info(g, gid);
     if ((info == NULL) || (raw < info->min_raw) || (raw > info->max_raw)) {
+        refusal_of_row(l, index, " out of range");
         return 1;
     }
     uint8_t *p = field_rw(l->cfg, &l->params, g, index);
     const int32_t old = load(p, rows[index].kind);
     store(p, rows[index].kind, raw);
     if (reinit_group(l, g) != 0) {
-        store(p, rows[index].kind, old); /* refused by a joint check: as it was */
+        /* the reason before the old value's re-init clears it: the modes
+         * name the joint rule (config_check.h) or their block's field */
+        if (l->fw->modes_bad.field != HT_MODES_P_NONE) {
+            ht_modes_bad_name(&l->fw->modes_bad, l->param_refusal,
+                              (unsigned)sizeof l->param_refusal);
+        } else {
+            refusal_of_row(l, index, " refused by a joint limit");
+        }
+        store(p, rows[index].kind, old); /* refused whole: as it was */
         (void)reinit_group(l, g);
         return 2;
     }

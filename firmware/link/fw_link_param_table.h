@@ -34,7 +34,11 @@ int fw_link_param_get(const fw_link_t *l, uint16_t index, int32_t *raw,
 /* Set a row to raw (stored format): range-checked by the row, then the
  * group's joint checks and its block's init; applied to the live
  * configuration and the running controllers (the estimator and the flight
- * state are kept). 0 = applied; else nothing changed. */
+ * state are kept). 0 = applied; else nothing changed, and l->param_refusal
+ * says why in at most 49 characters: "<PARAM_ID> out of range", the joint
+ * rule of the modes (helical/guidance/config_check.h, as ht_modes_bad_name
+ * gives it: "joint.mode_input is a stick channel") or the block's first bad
+ * field ("speed.throttle_max"), or "<PARAM_ID> refused by a joint limit". */
 int fw_link_param_set(fw_link_t *l, uint16_t index, int32_t raw);
 /* The same rows in a configuration that is not flown (a board's stored set,
  * before fw_init): a row's value and table row from cfg (link_params for

@@ -110,6 +110,8 @@ typedef struct {
     uint8_t have_home_alt;
     /* parameter protocol */
     uint16_t param_list_next; /* PARAM_REQUEST_LIST: next index to send; >= count: idle */
+    char param_refusal[50];   /* why the last PARAM_SET was refused, a STATUSTEXT's text ("" after
+                                 one applied): fw_link_param_set (fw_link_param_table.c) */
     /* mission */
     fw_link_mission_t mission;
     fw_link_item_t items[FW_LINK_MAX_WAYPOINTS];  /* the active list (download answers it) */

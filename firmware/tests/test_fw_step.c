@@ -4,6 +4,7 @@
  * the guided path against the holds/guard/law/output stage called by hand,
  * and the pilot path's RC-loss policy (the modes' one).
  */
+#include "helical/estimator/air_data.h"
 #include "unity.h"
 
 #include "fw_step.h"
@@ -24,7 +25,9 @@ void setUp(void)
     in.sensors.imu_fresh = 1u;
     in.sensors.imu.accel_g[2] = -Q16_ONE; /* level, at rest */
     in.sensors.airspeed_fresh = 1u;
-    in.sensors.airspeed_cm_s = 2000;
+    /* the pitot's indicated 19.90 m/s is 20.00 m/s true at 100 m of
+     * pressure altitude (air_data.h): the law flies 20 m/s */
+    in.sensors.airspeed_cm_s = 1990;
     in.sensors.baro_fresh = 1u;
     in.sensors.baro_alt_cm = 10000;
 }
@@ -242,7 +245,7 @@ static void test_roll_in_slew_follows_the_bank_rate_bound(void)
     TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
     (void)run_until_control();
     ramp_guided_turn(&g, 3213.0 / 65536.0, 7);
-    in.sensors.airspeed_cm_s = 2000;
+    in.sensors.airspeed_cm_s = 1990; /* 20 m/s true at 100 m */
 }
 
 /* The lateral specific force reaches the law low-passed at the IMU rate
@@ -315,9 +318,40 @@ static void test_extreme_gps_and_baro_values(void)
     }
 }
 
+/* The board gives the pitot's INDICATED airspeed; the step makes it true
+ * once, with the latest baro reading (issue 33, item 13): at 3 000 m of
+ * pressure altitude 20.00 m/s indicated is 23.21 m/s true (ISA), for the law
+ * and the estimate alike; with the baro's temperature ISA + 20 K, 24.01 m/s
+ * (sqrt(275.65 / 255.65) more); before any baro reading, sea level. */
+static void test_pitot_made_true_with_the_baro(void)
+{
+    in.sensors.airspeed_cm_s = 2000;
+    in.sensors.baro_fresh = 0u;
+    TEST_ASSERT_EQUAL_INT(1, fw_init(&fw, &cfg));
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(2000, out.law_in.airspeed_cm_s); /* no baro yet */
+    in.sensors.baro_fresh = 1u;
+    in.sensors.baro_alt_cm = 300000;
+    (void)run_until_control();
+    TEST_ASSERT_INT16_WITHIN(1, 2321, out.law_in.airspeed_cm_s);
+    TEST_ASSERT_EQUAL_INT16(out.law_in.airspeed_cm_s, out.nav.airspeed_cm_s);
+    TEST_ASSERT_EQUAL_INT16(ht_true_airspeed_cm_s(2000, 300000, 0, 0u), out.nav.airspeed_cm_s);
+    in.sensors.baro_temp_valid = 1u;
+    in.sensors.baro_temp_cdeg = 250; /* ISA at 3 000 m is -4.5 degC: ISA + 7 K */
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(ht_true_airspeed_cm_s(2000, 300000, 250, 1u), out.nav.airspeed_cm_s);
+    TEST_ASSERT_INT16_WITHIN(1, 2351, out.nav.airspeed_cm_s); /* 23.21 sqrt(275.65/268.65) */
+    /* a stale baro keeps the last reading's density */
+    in.sensors.baro_fresh = 0u;
+    in.sensors.airspeed_cm_s = 1000;
+    (void)run_until_control();
+    TEST_ASSERT_EQUAL_INT16(ht_true_airspeed_cm_s(1000, 300000, 250, 1u), out.nav.airspeed_cm_s);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
+    RUN_TEST(test_pitot_made_true_with_the_baro);
     RUN_TEST(test_refusals_name_the_block);
     RUN_TEST(test_control_runs_every_divider_samples);
     RUN_TEST(test_level_imu_gives_a_level_estimate_to_the_law);

@@ -96,9 +96,12 @@ typedef struct {
     ht_imu_sample_t imu; /* gyro Q16 rad/s, specific force Q16 g (level: 0, 0, -1) */
     board_gps_t gps;
     uint8_t airspeed_fresh; /* a live pitot reading */
-    int16_t airspeed_cm_s;
+    int16_t airspeed_cm_s;  /* INDICATED airspeed (sea-level density), as the pitot's driver
+                               gives it: the step makes it true with the baro (air_data.h) */
     uint8_t baro_fresh;
-    int32_t baro_alt_cm; /* pressure altitude, mean sea level */
+    int32_t baro_alt_cm;     /* pressure altitude, mean sea level */
+    uint8_t baro_temp_valid; /* the baro measured the static temperature (else the ISA's) */
+    int16_t baro_temp_cdeg;  /* 0.01 degC */
 } board_sensors_t;
 
 /* Why the firmware entered failsafe (passed to board_failsafe). */

@@ -61,10 +61,32 @@ def prepare_out(arg: str, names: Iterable[str] = ()) -> Path:
     for n in names:
         q = out / n
         want_dir = n.endswith("/")
+        if q.is_symlink():  # writing would follow it and overwrite its target
+            raise UsageError(f"--out {out}: {q} is a symbolic link (to {os.readlink(q)}): not "
+                             "overwritten; remove it or choose another --out")
         if q.exists() and q.is_dir() != want_dir:
             raise UsageError(f"--out {out}: {q} exists and is not a "
                              f"{'folder' if want_dir else 'file'}")
     return out
+
+def prepare_file(arg: str, option: str) -> Path:
+    """An output file an option names, checked before anything is flown: not
+    a folder, not a symbolic link (its target would be overwritten), in a
+    folder that exists and can be written."""
+    if not arg.strip():
+        raise UsageError(f"{option} is empty: give a file name")
+    f = Path(arg)
+    if f.is_symlink():
+        raise UsageError(f"{option} {f}: is a symbolic link (to {os.readlink(f)}): not overwritten")
+    if f.is_dir():
+        raise UsageError(f"{option} {f}: is a folder, not a file")
+    parent = f.parent if str(f.parent) else Path(".")
+    if not parent.is_dir():
+        raise UsageError(f"{option} {f}: the folder {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK) or (f.exists() and not os.access(f, os.W_OK)):
+        raise UsageError(f"{option} {f}: cannot write there")
+    return f
+
 
 SUMMARY_COLS = (
     ("scenario", "scenario", "{}"),
@@ -704,10 +726,11 @@ def _add_options_parser(sub: Any) -> None:
 def cmd_serve(args: argparse.Namespace) -> int:
     from helical_sil.live import serve as sv
     speed = 0.0 if args.fast else args.speed
+    # refused before the flight, not after it
+    stats = prepare_file(args.stats_json, "--stats-json") if args.stats_json is not None else None
     try:
         return sv.run_serve(Path(args.scenario), args.mavlink, speed, args.duration, args.mode,
-                            args.board_lib, args.sysid,
-                            Path(args.stats_json) if args.stats_json else None)
+                            args.board_lib, args.sysid, stats)
     except sv.ServeError as e:
         raise UsageError(str(e)) from None
 

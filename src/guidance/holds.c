@@ -123,9 +123,13 @@ static q16_t alt_hold_step(const ht_alt_hold_params_t *p, ht_alt_hold_state_t *s
     const bool saturated_low = before_q16 <= -p->max_pitch;
     const bool in_band = (err_cm <= p->integral_band_cm) && (err_cm >= -p->integral_band_cm);
     if (in_band && !((saturated_high && inc_q20 > 0) || (saturated_low && inc_q20 < 0))) {
-        integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
+        integral_q20 = q_add_sat32(integral_q20, inc_q20);
     }
-    s->integral_q20[idx] = integral_q20;
+    /* clamped whether or not it integrated: a bound lowered in flight (a
+     * parameter set) holds from this step on, for both integrators */
+    s->integral_q20[idx] = q_clamp32(integral_q20, -max_i_q20, max_i_q20);
+    s->integral_q20[1 - idx] = q_clamp32(s->integral_q20[1 - idx], -max_i_q20, max_i_q20);
+    integral_q20 = s->integral_q20[idx];
 
     const int32_t out_q16 = q_add_sat32(pd_q16, q_rshift_round(integral_q20, 4));
     return q_clamp32(out_q16, -p->max_pitch, ceiling_q16);
@@ -182,8 +186,11 @@ q14_t ht_speed_hold_step(const ht_speed_hold_params_t *p, ht_speed_hold_state_t 
     int32_t integral_q20 = s->integral_q20;
     const int32_t before_q16 = q_add_sat32(base_q16, q_rshift_round(integral_q20, 4));
     if (!((before_q16 >= hi_q16 && inc_q20 > 0) || (before_q16 <= lo_q16 && inc_q20 < 0))) {
-        integral_q20 = q_clamp32(q_add_sat32(integral_q20, inc_q20), -max_i_q20, max_i_q20);
+        integral_q20 = q_add_sat32(integral_q20, inc_q20);
     }
+    /* clamped whether or not it integrated: a bound lowered in flight holds
+     * from this step on */
+    integral_q20 = q_clamp32(integral_q20, -max_i_q20, max_i_q20);
     s->integral_q20 = integral_q20;
 
     const int32_t out_q16 =

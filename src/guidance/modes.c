@@ -7,6 +7,10 @@
 
 #include <stddef.h>
 
+#include "helical/guidance/config_check.h"
+
+_Static_assert(HT_CFG_RC_MAX == HT_MODES_RC_MAX, "the joint check's receiver is the modes'");
+
 #define DEG_TO_RAD_Q30      18740330L /* pi / 180 in Q30 */
 #define G_CM_S2_Q16         64268042L /* 980.665 cm/s^2 in Q16 */
 #define PITCH_MATCH_MAX_Q14 (4L * 16384L)
@@ -15,7 +19,7 @@
 static const char *const other_names[HT_MODES_P_COUNT - HT_MODES_P_RC_AILERON] = {
     "rc.aileron", "rc.elevator", "rc.rudder", "rc.throttle", "mode_threshold_us",
     "rate_hz",    "controller",  "fbw",       "nav",         "aoa",
-    "alt",        "speed",
+    "alt",        "speed",       "joint",
 };
 
 static const char *field_name(ht_modes_param_id_t id)
@@ -59,6 +63,8 @@ void ht_modes_bad_name(const ht_modes_bad_t *bad, char *buf, unsigned size)
         sub = ht_alt_hold_param_name((ht_alt_param_id_t)bad->sub);
     } else if (bad->field == HT_MODES_P_SPEED_HOLD) {
         sub = ht_speed_hold_param_name((ht_speed_param_id_t)bad->sub);
+    } else if (bad->field == HT_MODES_P_JOINT) {
+        sub = ht_config_reason((ht_cfg_status_t)bad->sub);
     } else {
         /* a field without sub-fields: the name alone */
     }
@@ -91,6 +97,7 @@ void ht_modes_params_default(ht_modes_params_t *p)
     d.rc.throttle.travel_us = 1000u;
     d.rc.rudder = stick;
     d.rc.rudder.input = 3u;
+    d.rc_channels = (uint8_t)HT_MODES_RC_MAX; /* a board with fewer says so (fw_main.c) */
     d.mode_threshold_us[0] = 1250u;
     d.mode_threshold_us[1] = 1750u;
     d.mode_threshold_us[2] = 2100u;
@@ -191,6 +198,14 @@ int ht_modes_init(ht_modes_t *m, const ht_modes_params_t *p, const ht_controller
         if (sb != HT_SPEED_P_NONE) {
             b.field = HT_MODES_P_SPEED_HOLD;
             b.sub = (int)sb;
+        }
+    }
+    if (b.field == HT_MODES_P_NONE) {
+        /* the rows are in range one by one: now together (config_check.h) */
+        const ht_cfg_status_t cs = ht_config_check(p, waypoints, count, &b.waypoint);
+        if (cs != HT_CFG_OK) {
+            b.field = HT_MODES_P_JOINT;
+            b.sub = (int)cs;
         }
     }
     if (b.field != HT_MODES_P_NONE) {

@@ -93,7 +93,8 @@ size_t fs_push(const fs_proto_t *p, uint8_t *w, size_t cap, uint8_t *held, ht_fr
      * the frame; the later ones lie inside it. */
     for (size_t i = 0u; i < n; i++) {
         fs_cand_t k = p->classify(&w[i], n - i, &size);
-        if (k == FS_ENDED && size == n - i && p->check(&w[i], size)) {
+        if (k == FS_ENDED && size == n - i && p->check(&w[i], size) &&
+            (i == 0u || p->decodes == NULL || p->decodes(&w[i], size))) {
             drop_before(p, w, n, i, c);
             c->frame_bytes = (c->frame_bytes > UINT32_MAX - (uint32_t)size)
                                  ? UINT32_MAX

@@ -8,7 +8,9 @@
  * the byte that ends it, is the frame. So a bad frame (a wrong length, a bad
  * checksum, a bad end byte, a frame cut short) costs that frame only: a good
  * frame that starts anywhere after the bad frame's start byte, a false start
- * byte inside a frame included, is found at its own last byte, never later.
+ * byte inside a frame included, is found at its own last byte, never later,
+ * unless it is a frame the decoder would not decode (fs_proto_t.decodes) and
+ * an earlier candidate is still open: then the earlier one goes on.
  * (The same rule as the HIL link's decoder, src/protocols/hil_frame.c.)
  *
  * A protocol describes its frames with two functions; the window and its
@@ -39,6 +41,14 @@ typedef struct {
     bool (*check)(const uint8_t *f, size_t size);
     /* A failed check is counted as bad_end (SBUS) rather than bad_checksum. */
     bool check_is_end_byte;
+    /* May be NULL (every checked frame decodes). Else: the checked frame
+     * f[0..size) is one the decoder decodes (a known type of the right
+     * length). A checked frame that is not, starting inside an earlier
+     * candidate still open, does not end that candidate: with an 8-bit CRC,
+     * one candidate in 256 inside a frame's payload checks by chance (a
+     * CRSF channel byte 0xC8, a length 4 and three zeros: the CRC of zeros
+     * is 0), and it must not cost the real frame around it. */
+    bool (*decodes)(const uint8_t *f, size_t size);
 } fs_proto_t;
 
 /*

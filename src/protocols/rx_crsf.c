@@ -45,7 +45,15 @@ static bool crsf_check(const uint8_t *f, size_t size)
     return crsf_crc8(&f[2], size - 3u) == f[size - 1u];
 }
 
-static const fs_proto_t crsf_proto = {crsf_classify, crsf_check, false};
+/* RC channels or link statistics of their lengths (decode_frame's) */
+static bool crsf_decodes(const uint8_t *f, size_t size)
+{
+    const size_t payload_len = size - 4u;
+    return ((f[2] == CRSF_TYPE_RC_CHANNELS) && (payload_len == RC_PACKED_BYTES)) ||
+           ((f[2] == CRSF_TYPE_LINK_STATS) && (payload_len == CRSF_LINK_STATS_BYTES));
+}
+
+static const fs_proto_t crsf_proto = {crsf_classify, crsf_check, false, crsf_decodes};
 
 void crsf_init(crsf_decoder_t *d)
 {

@@ -25,7 +25,7 @@ static bool sbus_check(const uint8_t *f, size_t size)
     return size == SBUS_FRAME_BYTES && sbus_end_ok(f[SBUS_FRAME_BYTES - 1u]);
 }
 
-static const fs_proto_t sbus_proto = {sbus_classify, sbus_check, true};
+static const fs_proto_t sbus_proto = {sbus_classify, sbus_check, true, NULL};
 
 void sbus_init(sbus_decoder_t *d)
 {

@@ -51,7 +51,7 @@ static bool ubx_check(const uint8_t *f, size_t size)
     return f[size - 2u] == (uint8_t)(ck & 0xFFu) && f[size - 1u] == (uint8_t)(ck >> 8u);
 }
 
-static const fs_proto_t ubx_proto = {ubx_classify, ubx_check, false};
+static const fs_proto_t ubx_proto = {ubx_classify, ubx_check, false, NULL};
 
 void ubx_init(ubx_decoder_t *d)
 {

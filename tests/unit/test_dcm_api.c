@@ -47,7 +47,7 @@ static void expect_param(ht_dcm_params_t p, ht_dcm_param_id_t id, int ok)
 static void test_parameter_edges_each_field(void)
 {
     EDGE(imu_rate_hz, HT_DCM_P_IMU_RATE, 50u, 1000u);
-    EDGE(kp_rollpitch, HT_DCM_P_KP_ROLLPITCH, 0, 16 * Q16_ONE);
+    EDGE(kp_rollpitch, HT_DCM_P_KP_ROLLPITCH, 0, 2 * Q16_ONE);
     EDGE(ki_rollpitch, HT_DCM_P_KI_ROLLPITCH, 0, 4 * Q16_ONE);
     EDGE(kp_yaw, HT_DCM_P_KP_YAW, 0, 16 * Q16_ONE);
     EDGE(ki_yaw, HT_DCM_P_KI_YAW, 0, 4 * Q16_ONE);
@@ -130,12 +130,12 @@ static void test_defaults_and_derived_values(void)
     dt_init(&dcm, &p);
     TEST_ASSERT_EQUAL_INT32(1073742, dcm.dt_q30); /* 1073741.824 */
     p.imu_rate_hz = 50u;
-    p.kp_rollpitch = 16 * Q16_ONE;
+    p.kp_rollpitch = 2 * Q16_ONE;
     p.ki_rollpitch = 4 * Q16_ONE;
     dt_init(&dcm, &p);
     TEST_ASSERT_EQUAL_INT32(21474836, dcm.dt_q30);
-    /* the largest gain products fit: 0.32 in Q32, 0.08 in Q34 */
-    TEST_ASSERT_DOUBLE_WITHIN(1e-8, 0.32, dcm.kp_rp_dt_q32 / 4294967296.0);
+    /* the largest gain products fit: 0.04 in Q32, 0.08 in Q34 */
+    TEST_ASSERT_DOUBLE_WITHIN(1e-8, 0.04, dcm.kp_rp_dt_q32 / 4294967296.0);
     TEST_ASSERT_DOUBLE_WITHIN(1e-8, 0.08, dcm.ki_rp_dt_q34 / 17179869184.0);
     ht_dcm_params_default(NULL); /* no crash */
 }
@@ -254,7 +254,7 @@ static void test_saturation_flags_at_the_full_scales(void)
 static void test_bias_limited_flag(void)
 {
     prm.ki_rollpitch = 4 * Q16_ONE;
-    prm.kp_rollpitch = 4 * Q16_ONE;
+    prm.kp_rollpitch = 2 * Q16_ONE; /* the row's top */
     dt_init(&dcm, &prm);
     double r[3][3];
     dcmr_from_euler(0, 0, 0, r);
@@ -273,9 +273,9 @@ static void test_bias_limited_flag(void)
     ht_dcm_output(&st, &out);
     TEST_ASSERT_EQUAL_INT32(prm.gyro_bias_max_rad_s, out.gyro_bias_rad_s[1]);
     /* the attitude is held by the proportional term: bank error
-     * (10 deg/s - 0.1 rad/s) / (kp / 2) = 0.049 rad (the accelerometer's
-     * w x v reference runs at half the gains) */
-    TEST_ASSERT_DOUBLE_WITHIN(0.004, (10 * DEG - 0.1) / 2.0, dt_att_err(&st, r));
+     * (10 deg/s - 0.1 rad/s) / (kp / 2) = 0.0745 rad with kp = 2 (the
+     * accelerometer's w x v reference runs at half the gains) */
+    TEST_ASSERT_DOUBLE_WITHIN(0.004, (10 * DEG - 0.1) / 1.0, dt_att_err(&st, r));
 }
 
 /* --- renormalization failure ------------------------------------------- */

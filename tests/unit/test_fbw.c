@@ -144,11 +144,16 @@ static void test_turn_rate_and_pitch_every_pulse(void)
 
 static void test_inverted_switch_threshold_and_loss(void)
 {
-    uint16_t rc[8] = {1500u, 1500u, 1000u, 1500u, 1500u, 1499u, 1500u, 1500u};
+    /* the default threshold 1750 us: a centred switch channel (1500 us)
+     * is upright, one microsecond below the threshold too */
+    uint16_t rc[8] = {1500u, 1500u, 1000u, 1500u, 1500u, 1500u, 1500u, 1500u};
     ht_fbw_output_t o;
     ht_fbw_step(&fbw, &map, rc, 8u, &o);
     TEST_ASSERT_EQUAL_UINT8(0u, o.inverted);
-    rc[5] = 1500u;
+    rc[5] = 1749u;
+    ht_fbw_step(&fbw, &map, rc, 8u, &o);
+    TEST_ASSERT_EQUAL_UINT8(0u, o.inverted);
+    rc[5] = 1750u;
     ht_fbw_step(&fbw, &map, rc, 8u, &o);
     TEST_ASSERT_EQUAL_UINT8(1u, o.inverted);
     rc[5] = 2000u;

@@ -603,6 +603,10 @@ static void test_init_names_each_bad_field(void)
             b.aoa.load_max = 0;
             want = "aoa.load_max";
             break;
+        case HT_MODES_P_JOINT:
+            b.mode_input = 0u; /* a legal row, the aileron stick's input */
+            want = "joint.mode_input is a stick channel";
+            break;
         case HT_MODES_P_ALT_HOLD:
             b.alt.rate_hz = 50u; /* legal alone, not the modes' rate */
             want = "alt.rate_hz";

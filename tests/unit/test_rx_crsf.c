@@ -502,6 +502,49 @@ static void test_null_pointers(void)
     TEST_ASSERT_EQUAL_UINT64(0, ft_accounted(&d.counts, d.held));
 }
 
+/* A valid RC frame whose payload holds a false inner frame with a good CRC
+ * (a byte 0xC8 or 0xEE, a length, and bytes whose CRC-8 is the last: the
+ * CRC of zeros is 0) decodes; before issue 33 the inner frame of type 0x00
+ * ended the window and the channels were lost (found by fuzz_crsf's
+ * independent encoder: channel 0 = 0x4C8, all else 0). Every sync, every
+ * inner start and every inner length that fits, with an inner payload of
+ * zeros. */
+static void test_false_inner_frame_does_not_cost_the_frame(void)
+{
+    unsigned cases = 0u;
+    for (unsigned sync = 0u; sync < 2u; ++sync) {
+        for (unsigned at = 0u; at + 2u <= 22u; ++at) {
+            for (unsigned len = 2u; at + 2u + len <= 22u; ++len) {
+                uint8_t payload[22] = {0};
+                payload[at] = (sync != 0u) ? 0xEEu : 0xC8u;
+                payload[at + 1u] = (uint8_t)len; /* type 0, zeros, CRC 0: checks */
+                uint8_t f[26];
+                const size_t n = enc(0xC8, 0x16, payload, 22u, f);
+                uint16_t want[16];
+                rc_unpack_11bit(payload, want);
+                crsf_decoder_t d;
+                crsf_init(&d);
+                crsf_msg_t m;
+                int got = 0;
+                for (size_t i = 0u; i < n; ++i) {
+                    const crsf_result_t r = crsf_push(&d, f[i], &m);
+                    if (r != CRSF_NONE) {
+                        TEST_ASSERT_EQUAL_INT(CRSF_RC_CHANNELS, r);
+                        TEST_ASSERT_EQUAL_UINT((unsigned)(n - 1u), (unsigned)i);
+                        got = 1;
+                    }
+                }
+                TEST_ASSERT_EQUAL_INT_MESSAGE(1, got, "the frame was lost");
+                TEST_ASSERT_EQUAL_UINT16_ARRAY(want, m.rc.ticks, 16);
+                TEST_ASSERT_EQUAL_UINT32(1u, d.counts.frames_ok);
+                TEST_ASSERT_EQUAL_UINT32(0u, d.counts.unknown_type);
+                cases++;
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT(2u * 190u, cases); /* sum over at of 21 - at - 1 */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -511,6 +554,7 @@ int main(void)
     RUN_TEST(test_random_frames_with_garbage);
     RUN_TEST(test_every_truncation_point);
     RUN_TEST(test_every_single_byte_corruption);
+    RUN_TEST(test_false_inner_frame_does_not_cost_the_frame);
     RUN_TEST(test_null_pointers);
     return UNITY_END();
 }

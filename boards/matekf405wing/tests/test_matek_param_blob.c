@@ -299,6 +299,38 @@ static void test_other_imu_rate_is_refused(void)
     TEST_ASSERT_EQUAL_UINT8(MATEK_PARAMS_LOADED, rep.result);
 }
 
+/* A stored set each of whose rows is in range but that breaks the joint
+ * rule (config_check.h: the mode switch on the aileron stick, the inverted
+ * switch on a stick, its threshold at the stick centre) is refused whole at
+ * boot, the defaults kept, the row and the rule named (issue 33: on main it
+ * was loaded, and the aircraft booted with the aileron stick switching
+ * modes). */
+static void test_jointly_unsafe_set_is_refused(void)
+{
+    static const struct {
+        const char *id;
+        int32_t raw;
+        const char *reason;
+    } cases[] = {
+        {"MOD_MODE_INPUT", 0, "joint.mode_input is a stick channel"},
+        {"FBW_INVERTD_INPT", 1, "joint.inverted_input is a stick channel"},
+        {"FBW_INVRTD_THRSH", 1500, "joint.inverted_threshold_us not in (centre, full]"},
+    };
+    for (unsigned i = 0u; i < sizeof cases / sizeof cases[0]; ++i) {
+        setUp();
+        save_with(index_of_id(cases[i].id), cases[i].raw);
+        const fw_config_t before = cfg;
+        matek_params_report_t rep;
+        matek_params_load(&flash, &cfg, &lp, &rep);
+        TEST_ASSERT_EQUAL_UINT8(MATEK_PARAMS_REFUSED, rep.result);
+        TEST_ASSERT_EQUAL_UINT8(MATEK_BAD_INIT, rep.bad);
+        TEST_ASSERT_EQUAL_UINT8(FW_BAD_MODES, rep.bad_block);
+        TEST_ASSERT_EQUAL_STRING(cases[i].id, rep.bad_id);
+        TEST_ASSERT_EQUAL_STRING(cases[i].reason, rep.reason);
+        TEST_ASSERT_EQUAL_MEMORY(&before, &cfg, sizeof cfg);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -312,5 +344,6 @@ int main(void)
     RUN_TEST(test_row_out_of_range_is_refused);
     RUN_TEST(test_joint_limit_is_refused);
     RUN_TEST(test_other_imu_rate_is_refused);
+    RUN_TEST(test_jointly_unsafe_set_is_refused);
     return UNITY_END();
 }

@@ -124,6 +124,8 @@ const char *ht_aoa_param_name(ht_aoa_param_id_t id);
 typedef struct {
     HT_PARAMS_MODES(HT_PARAM_X_FIELD)
     os_rc_map_t rc;                /* manual sticks; aileron and elevator are also FBW's */
+    uint8_t rc_channels;           /* the receiver's channels (the board's board_rc_count()),
+                                      [1, 16]: every input read is one of them */
     uint16_t mode_threshold_us[3]; /* strictly increasing, within the valid RC window */
     uint16_t rate_hz;              /* control rate, [1, 1000]; also alt.rate_hz, speed.rate_hz */
     ht_fbw_params_t fbw;
@@ -149,6 +151,9 @@ typedef enum {
     HT_MODES_P_AOA,        /* see bad->sub (ht_aoa_param_id_t) */
     HT_MODES_P_ALT_HOLD,   /* see bad->sub (ht_alt_param_id_t; RATE_HZ: != rate_hz) */
     HT_MODES_P_SPEED_HOLD, /* see bad->sub (ht_speed_param_id_t; RATE_HZ: != rate_hz) */
+    HT_MODES_P_JOINT,      /* the rows are in range but not together: bad->sub is the
+                              ht_cfg_status_t of ht_config_check (config_check.h), bad->waypoint
+                              the leg's end for HT_CFG_ARRIVAL_RADIUS */
     HT_MODES_P_COUNT
 } ht_modes_param_id_t;
 

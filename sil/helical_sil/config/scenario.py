@@ -453,6 +453,27 @@ def _check_gain_order(src: Path, gains: dict[str, float], sources: dict[str, Pat
 
 # --- aircraft -----------------------------------------------------------------
 
+def _check_model_name(src: Path, model: str) -> None:
+    """A JSBSim model is a folder of JSBSim's aircraft root named like an
+    aircraft file (AIRCRAFT_NAME_RE: no '/', no leading '.'), so a name
+    cannot reach another path ("../../etc/passwd"); if the folder is there,
+    it must not be a link out of the root."""
+    if not AIRCRAFT_NAME_RE.fullmatch(model) or ".." in model:
+        raise ScenarioError(
+            f"{_where(src, 'model')}: not a JSBSim model name: {_show(model)} (a name is up to 64 "
+            "letters, digits, '_', '-', '.', starting with a letter or digit: a folder of "
+            "JSBSim's aircraft root, e.g. \"c172p\")")
+    try:
+        from helical_sil.config.aircraft import models_root
+        root = models_root()
+    except ImportError:  # no JSBSim here: the name's form is all there is to check
+        return
+    folder = root / model
+    if folder.exists() and not folder.resolve().is_relative_to(root.resolve()):
+        raise ScenarioError(f"{_where(src, 'model')}: {folder} is a link to {folder.resolve()}, "
+                            f"outside JSBSim's aircraft root {root}: not flown")
+
+
 def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "aircraft") -> Aircraft:
     """Find <name>.toml in the search dirs (the scenario's aircraft/ folder first).
     The name is a plain file name (AIRCRAFT_NAME_RE): it cannot leave the folders."""
@@ -469,6 +490,10 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
     else:
         raise ScenarioError(
             f"{_where(src, key)}: unknown aircraft {_show(name)} (known: {', '.join(known) or 'none'})")
+    # a link may point anywhere: the file flown must be one of the folder's own
+    if not p.resolve().is_relative_to(d.resolve()):
+        raise ScenarioError(f"{_where(src, key)}: {p} is a link to {p.resolve()}, outside the "
+                            f"aircraft folder {d}: not flown")
     doc = _load_toml(p)
     _check_keys(p, "", doc, ("model", "description", "gains", "initial", "modes", "nav", "fbw",
                              "aoa", "envelope"))
@@ -481,6 +506,7 @@ def load_aircraft(name: str, search_dirs: list[Path], src: Path, key: str = "air
         if key not in doc:
             raise ScenarioError(f"{_where(p, key)}: missing (required): {why}")
     model = _str(p, "model", doc["model"])
+    _check_model_name(p, model)
     desc = _str(p, "description", doc.get("description", ""))
     gains = dict(GAIN_DEFAULTS)
     gtable = _table(p, "gains", doc["gains"])
@@ -657,6 +683,42 @@ def _table_value(src: Path, key: str, v: Any, p: params.Param, factor: float = 1
 
 
 # --- fault campaign (issue 7) ---
+def _check_sensor_numbers(src: Path, prefix: str, table: dict[str, Any]) -> None:
+    """Every number of [sensor_model] finite as a double, named by its key (an
+    integer beyond double range would otherwise be a traceback)."""
+    for k, v in table.items():
+        key = f"{prefix}.{k}"
+        if isinstance(v, dict):
+            _check_sensor_numbers(src, key, v)
+        elif isinstance(v, (int, float)) and not isinstance(v, bool):
+            _num(src, key, v)
+
+
+# The sensor model's rates and the GPS latency as the firmware meets them: a
+# GPS at most one fix per simulation step (a faster one is a loop of fixes
+# per step that never ends at 1e9 Hz), the latency the estimator is told by
+# default within its row (params.def gps_latency, [0, 500] ms).
+GPS_LATENCY_MAX_S = 0.5
+
+
+def _check_sensor_rates(src: Path, sc: Scenario, model: Any, latency_given: bool) -> None:
+    gps_hz = model.gps.rate_hz
+    if not 0.0 < gps_hz <= sc.sim_rate_hz:
+        raise ScenarioError(f"{_where(src, 'sensor_model.gps.rate_hz')}: must be in (0, "
+                            f"{sc.sim_rate_hz}] Hz (at most one fix per sim step, sim_rate_hz), "
+                            f"got {_show(gps_hz)} Hz")
+    imu_hz = model.imu.rate_hz
+    if not 0.0 < imu_hz <= 1000.0:
+        raise ScenarioError(f"{_where(src, 'sensor_model.imu.rate_hz')}: must be in (0, 1000] Hz "
+                            f"(the SIL samples the IMU at sim_rate_hz), got {_show(imu_hz)} Hz")
+    lat = model.gps.latency_s
+    if not latency_given and not 0.0 <= lat <= GPS_LATENCY_MAX_S:
+        raise ScenarioError(
+            f"{_where(src, 'sensor_model.gps.latency_s')}: must be in [0, {GPS_LATENCY_MAX_S}] s "
+            f"(the estimator is told it: its gps_latency row is [0, 500] ms; set "
+            f"estimator.gps_latency_s to fly a longer true latency), got {_show(lat)} s")
+
+
 def _parse_faults(src: Path, doc: dict[str, Any], sens: dict[str, Any], sc: Scenario) -> None:
     """The sensor-fault keys of [sensors] and the [upset] table."""
     sc.fault_start_s = _num(src, "sensors.fault_start_s", sens.get("fault_start_s", 0.0), 0.0,
@@ -748,11 +810,13 @@ def load_scenario(path: str | Path, aircraft_dirs: list[Path] | None = None) -> 
     sc.attitude_source = _str(src, "attitude.source", att.get("source", "estimate"),
                               ATTITUDE_SOURCES)
     sc.sensor_model = _table(src, "sensor_model", doc.get("sensor_model", {}))
+    _check_sensor_numbers(src, "sensor_model", sc.sensor_model)
     try:  # the sensor model names a bad key itself
-        sensor_config.config_from_dict(sc.sensor_model)
+        model = sensor_config.config_from_dict(sc.sensor_model)
     except ValueError as e:
         raise ScenarioError(f"{src}: [sensor_model] {e}") from None
     est = _table(src, "estimator", doc.get("estimator", {}))
+    _check_sensor_rates(src, sc, model, "gps_latency_s" in est)
     _check_keys(src, "estimator", est, tuple(ESTIMATOR_KEYS))
     for k, (name, factor) in ESTIMATOR_KEYS.items():
         if k in est:

@@ -19,7 +19,8 @@ Outputs are in the units of the firmware's estimator (include/helical/estimator/
   the speed through the air: the law's target bank tan(phi) = omega V / g and
   the estimator's centripetal term omega x v; a board gets it from the
   differential pressure and the static pressure and temperature (here the
-  density is JSBSim's, exact). It is also what sim/lockstep.py feeds the board today.
+  density is JSBSim's, exact). sim/lockstep.py feeds the board the indicated
+  airspeed, as a board's pitot driver gives it: the firmware makes it true.
 - Baro (``BaroSample``): static pressure with noise and drift -> ISA pressure
   altitude (m) for the configured QNH (101325 Pa: altitude above sea level in
   JSBSim's standard atmosphere).

@@ -721,7 +721,10 @@ def _board_seam(sc: Scenario, sens: object, model: sensors_mod.SensorModel,
     sens.gps_alt_m = gps.alt_msl_m  # type: ignore[attr-defined]
     for k in range(3):
         sens.gps_vel_ned_m_s[k] = gps.vel_ned_m_s[k]  # type: ignore[attr-defined]
-    pitot = model.pitot(state, t).airspeed_m_s
+    # what the board's pitot driver gives: INDICATED airspeed (sea-level
+    # density, boards/devices/airspeed_ms4525.h); the firmware step makes it
+    # true with the baro (include/helical/estimator/air_data.h), as on the board
+    pitot = model.pitot(state, t).ias_m_s
     if sc.airspeed_noise_m_s > 0.0:
         pitot += sc.airspeed_noise_m_s * float(rng.normal())
     # the faults' pitot (stuck, spikes) through the same function as the truth path
