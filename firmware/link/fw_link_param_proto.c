@@ -152,7 +152,13 @@ static void param_set(fw_link_t *l, const mavlink_message_t *msg)
     }
     /* the one call site of a set: the row's range, the block's joint checks */
     if (fw_link_param_set(l, i, raw) != 0) {
-        refused(id, "joint check of its group", &t);
+        /* the joint rule's own reason (config_check.h, a whole text of at
+         * most 49 characters), else the group's */
+        if (l->param_refusal[0] != '\0') {
+            fw_link_text_start(&t, l->param_refusal);
+        } else {
+            refused(id, "joint check of its group", &t);
+        }
         send_refusal(l, &t);
         (void)fw_link_send_param_value(l, i);
         return;

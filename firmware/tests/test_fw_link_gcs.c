@@ -192,7 +192,10 @@ static void test_storage_is_refused_while_flying(void)
 {
     lk.save = save_hook;
     saved = 0;
-    /* LAW_V_MIN is 5 m/s: 5 m/s of airspeed, or of ground speed, is flying */
+    /* LAW_V_MIN is 5 m/s: 5 m/s of airspeed, or of ground speed, is flying.
+     * At sea level (ISA) the step's true airspeed is the pitot's indicated
+     * one, so the bound falls exactly between 500 and 499 cm/s. */
+    in.sensors.baro_alt_cm = 0;
     in.sensors.airspeed_cm_s = 500;
     steps(2u);
     unsigned from = nrx;
@@ -206,6 +209,7 @@ static void test_storage_is_refused_while_flying(void)
     command_long(MAV_CMD_PREFLIGHT_STORAGE, 1.0f, 0.0f);
     TEST_ASSERT_EQUAL_INT(MAV_RESULT_ACCEPTED, command_result(from, MAV_CMD_PREFLIGHT_STORAGE));
     TEST_ASSERT_EQUAL_INT(1, saved);
+    in.sensors.baro_alt_cm = 50000;
 }
 
 /* --- STATUSTEXT ------------------------------------------------------------ */
@@ -350,7 +354,7 @@ static void test_param_type_is_honoured_or_the_set_refused(void)
         {"LAW_V_MIN", bits_of(1e30f), MAV_PARAM_TYPE_REAL32,
          "LAW_V_MIN refused: outside [1, 327.67] m/s|"},
         {"LAW_V_MIN", bits_of(20.0f), MAV_PARAM_TYPE_REAL32,
-         "LAW_V_MIN refused: joint check of its group|"},
+         "LAW_V_MIN refused by a joint limit|"},
     };
     for (unsigned i = 0u; i < sizeof bad / sizeof bad[0]; ++i) {
         steps(8u); /* the text rate: one per 200 ms */
@@ -419,6 +423,22 @@ static void test_param_read_index_minus_two_is_refused(void)
                                         -1);
     send(&m);
     TEST_ASSERT_EQUAL_UINT(1u, count_id(MAVLINK_MSG_ID_PARAM_VALUE, from));
+}
+
+/* a set the joint rule refuses (issue 33) says the rule's reason on the wire,
+ * and the value in force stays */
+static void test_joint_refusal_names_the_rule(void)
+{
+    steps(8u); /* the text rate: one per 200 ms */
+    const int32_t index = fw_link_param_find(id16("MOD_MODE_INPUT"));
+    TEST_ASSERT_TRUE(index >= 0);
+    int32_t before = -1;
+    TEST_ASSERT_EQUAL_INT(0, fw_link_param_get(&lk, (uint16_t)index, &before, NULL));
+    TEST_ASSERT_NOT_EQUAL(0, before);
+    unsigned from = nrx;
+    set_param("MOD_MODE_INPUT", 0.0f); /* the aileron stick */
+    TEST_ASSERT_EQUAL_STRING("joint.mode_input is a stick channel|", texts(from));
+    TEST_ASSERT_EQUAL_FLOAT((float)before, param_value_of("MOD_MODE_INPUT", from));
 }
 
 /* --- missions -------------------------------------------------------------- */
@@ -557,6 +577,7 @@ int main(void)
     RUN_TEST(test_param_type_is_honoured_or_the_set_refused);
     RUN_TEST(test_a_rounded_set_echoes_what_was_sent);
     RUN_TEST(test_param_read_index_minus_two_is_refused);
+    RUN_TEST(test_joint_refusal_names_the_rule);
     RUN_TEST(test_mission_frames_0_and_3_are_accepted);
     RUN_TEST(test_legacy_mission_item_upload);
     RUN_TEST(test_refused_upload_keeps_the_flown_mission);
