@@ -420,7 +420,9 @@ int32_t fw_link_stream_interval_us(const fw_link_t *l, fw_link_stream_t s)
     if (us != 0) {
         return (us < 0) ? 0 : us;
     }
-    return (int32_t)(interval_ms(l, s) * 1000u);
+    /* interval_ms is at most INT32_MAX / 1000 ms: the product fits an int32 */
+    const uint32_t from_ms_us = interval_ms(l, s) * 1000u;
+    return (int32_t)from_ms_us;
 }
 
 void fw_link_telemetry_after_step(fw_link_t *l)

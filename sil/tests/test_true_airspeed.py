@@ -47,15 +47,16 @@ def _fly(tmp_path: Path, board_lib: str, monkeypatch: pytest.MonkeyPatch,
     p = tmp_path / f"turn{alt_m}.toml"
     p.write_text(TURN.replace("{alt}", str(alt_m)))
     fed: list[tuple[float, float]] = []  # (what the board was given, JSBSim's true airspeed)
-    raw = lockstep._raw_sensors
+    raw = lockstep._board_seam  # the seam of every control step (the SIL loop's)
 
     def spy(sc, sens, model, state, t, *rest):  # type: ignore[no-untyped-def]
         raw(sc, sens, model, state, t, *rest)
         fed.append((sens.pitot_m_s, state.vt_m_s))
 
-    monkeypatch.setattr(lockstep, "_raw_sensors", spy)
+    monkeypatch.setattr(lockstep, "_board_seam", spy)
     t = lockstep.run(load_scenario(p), board_lib).telemetry
-    monkeypatch.setattr(lockstep, "_raw_sensors", raw)
+    assert len(fed) > 1000, "the spy saw no control step: is _board_seam still the seam?"
+    monkeypatch.setattr(lockstep, "_board_seam", raw)
     seg = (t["t_s"] > 18.0) & (t["cmd_turn_rate_deg_s"] > 9.0)
     return (float(np.mean([f / v for f, v in fed])),
             float(np.mean(t["law_airspeed_m_s"] / t["airspeed_m_s"])),
