@@ -17,6 +17,7 @@
  */
 #include "link/fw_link_mission.h"
 
+#include "helical/guidance/config_check.h"
 #include "link/fw_link_f32.h"
 #include "link/fw_link_text.h"
 #include "link/fw_link_tx.h"
@@ -119,7 +120,8 @@ static void fly(fw_link_t *l, uint16_t count)
  * guidance's own rule (ht_nav_init) before anything flown or listed
  * changes. 0 = flown; 1 = waits for the home position (upload[] kept,
  * apply_pending); 2 = refused by the guidance (the list flown unchanged;
- * *bad the item).
+ * *bad the item); 3 = refused by the joint rule (a leg shorter than twice
+ * the arrival radius: the list flown unchanged, *bad the leg's item).
  */
 static int replace_list(fw_link_t *l, uint16_t *bad)
 {
@@ -148,6 +150,13 @@ static int replace_list(fw_link_t *l, uint16_t *bad)
         (ht_nav_init(&check, &l->cfg->modes.nav, l->candidate, n, &field, &which) != 0)) {
         *bad = which; /* e.g. beyond 10 000 km of home */
         return 2;
+    }
+    /* the one joint rule (config_check.h) on the list as it would fly: the
+     * modes re-initialised on a list it refuses would leave the step unready */
+    uint16_t leg = 0u;
+    if ((n > 0u) && (ht_config_check(&l->cfg->modes, l->candidate, n, &leg) != HT_CFG_OK)) {
+        *bad = leg;
+        return 3;
     }
     (void)memcpy(l->waypoints, l->candidate, (size_t)n * sizeof l->waypoints[0]);
     (void)memcpy(l->items, l->upload, (size_t)n * sizeof l->items[0]);
@@ -281,13 +290,16 @@ static void on_item(fw_link_t *l, const mavlink_message_t *msg, uint16_t seq, ui
     if (r == 2) {
         mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused: out of range,",
                      (int32_t)bad);
+    } else if (r == 3) {
+        mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused: leg < 2x arrival radius,",
+                     (int32_t)bad);
     } else if (r == 1) {
         mission_text(l, (uint8_t)MAV_SEVERITY_NOTICE, "mission accepted: flown at GPS fix", -1);
     } else {
         /* flown */
     }
     ack(l, m->partner_sysid, m->partner_compid,
-        (r == 2) ? (uint8_t)MAV_MISSION_ERROR : (uint8_t)MAV_MISSION_ACCEPTED, mission_type);
+        (r >= 2) ? (uint8_t)MAV_MISSION_ERROR : (uint8_t)MAV_MISSION_ACCEPTED, mission_type);
 }
 
 static void on_item_int(fw_link_t *l, const mavlink_message_t *msg)
@@ -436,7 +448,7 @@ void fw_link_mission_after_step(fw_link_t *l)
         /* the deferred acceptance: applied, or reported refused (the list
          * flown before it stays) */
         uint16_t bad = 0u;
-        if (replace_list(l, &bad) == 2) {
+        if (replace_list(l, &bad) >= 2) {
             mission_text(l, (uint8_t)MAV_SEVERITY_WARNING, "mission refused at GPS fix,",
                          (int32_t)bad);
         } else {

@@ -481,6 +481,32 @@ static void test_legacy_mission_item_upload(void)
 }
 
 /* A refused upload leaves the flown mission and the download untouched. */
+/* a list the joint rule refuses (a leg under twice the arrival radius) is
+ * refused like an out-of-range one: the modes never re-initialised on it
+ * (found by fuzz_mavlink_rx: the step was left unready) */
+static void test_short_leg_upload_is_refused_and_the_step_stays_ready(void)
+{
+    steps(40u);
+    upload_square();
+    TEST_ASSERT_EQUAL_UINT16(4u, cfg.waypoint_count);
+    ht_waypoint_t before[4];
+    memcpy(before, cfg.waypoints, sizeof before);
+    steps(8u);
+    const unsigned from = nrx;
+    send_count(2u);
+    send_item(0u, wp_lat[0], wp_lon[0], 100.0f, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
+              MAV_CMD_NAV_WAYPOINT);
+    send_item(1u, wp_lat[0] + 90, wp_lon[0], 100.0f, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
+              MAV_CMD_NAV_WAYPOINT); /* 1 m north */
+    TEST_ASSERT_EQUAL_INT(MAV_MISSION_ERROR, last_ack(from));
+    TEST_ASSERT_EQUAL_STRING("mission refused: leg < 2x arrival radius, item 1|", texts(from));
+    TEST_ASSERT_EQUAL_UINT16(4u, cfg.waypoint_count);
+    TEST_ASSERT_EQUAL_MEMORY(before, cfg.waypoints, sizeof before);
+    steps(4u);
+    TEST_ASSERT_EQUAL_UINT8(1u, fw.ready);
+    TEST_ASSERT_EQUAL_UINT8(1u, fw.modes.ready);
+}
+
 static void test_refused_upload_keeps_the_flown_mission(void)
 {
     steps(40u);
@@ -581,6 +607,7 @@ int main(void)
     RUN_TEST(test_mission_frames_0_and_3_are_accepted);
     RUN_TEST(test_legacy_mission_item_upload);
     RUN_TEST(test_refused_upload_keeps_the_flown_mission);
+    RUN_TEST(test_short_leg_upload_is_refused_and_the_step_stays_ready);
     RUN_TEST(test_deferred_upload_is_applied_or_reported);
     RUN_TEST(test_deferred_upload_refused_at_the_fix_is_reported);
     return UNITY_END();
