@@ -45,18 +45,18 @@ int sil_imu_model_run(sil_imu_model_t *m, const double *in, int32_t n, double t_
         if (6 * (j + 1) > n_normals) {
             return SIL_IMU_FEW_NORMALS;
         }
-        const double t = t_base_s + (double)(j + 1) * dt_s;
+        const double t = t_base_s + ((double)j + 1.0) * dt_s;
         if (!isfinite(t)) {
             return SIL_IMU_BAD_TIME;
         }
         double dt = 0.0;
-        if (m->have_last) {
+        if (m->have_last != 0) {
             dt = t - m->t_last_s;
             if (fabs(dt - period) > SIL_T_EPS_S) {
                 return SIL_IMU_BAD_TIME;
             }
         }
-        const double *s = in + (int64_t)j * SIL_IMU_IN_COUNT;
+        const double *s = &in[(int64_t)j * SIL_IMU_IN_COUNT];
         /* truth.ideal_gyro_rad_s: (-q, p, r); ideal_accel_g: FRD force per
          * mass in m/s^2, to library axes (-y, x, z), in g */
         const double m_slug = s[SIL_IMU_IN_MASS];
@@ -78,10 +78,10 @@ int sil_imu_model_run(sil_imu_model_t *m, const double *in, int32_t n, double t_
             vg[i] = tg[i] + m->vibration_gyro * sin(wt + m->phase_gyro[i]);
             va[i] = ta[i] + m->vibration_accel * sin(wt + m->phase_accel[i]);
         }
-        const int gs = triad_apply(&m->gyro, vg, dt, normals_gyro + 6 * j, gyro_rad_s + 3 * j);
-        const int as = triad_apply(&m->accel, va, dt, normals_accel + 6 * j, accel_g + 3 * j);
+        const int gs = triad_apply(&m->gyro, vg, dt, &normals_gyro[6 * j], &gyro_rad_s[3 * j]);
+        const int as = triad_apply(&m->accel, va, dt, &normals_accel[6 * j], &accel_g[3 * j]);
         if (saturated != NULL) {
-            saturated[j] = gs | (as << 1);
+            saturated[j] = gs + (2 * as); /* bit 0 gyro, bit 1 accel: each 0 or 1 */
         }
     }
     *at = n;

@@ -6,6 +6,7 @@
  */
 #include "sil_log.h"
 
+// cppcheck-suppress misra-c2012-21.6 ; D-SIL-HOST: the SIL host board writes flight.bin
 #include <stdio.h>
 #include <string.h>
 
@@ -29,6 +30,7 @@ size_t sil_log_size(void)
 
 static size_t file_write(void *ctx, const uint8_t *bytes, size_t n)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the sink\'s context is the sil_log_t
     sil_log_t *l = ctx;
     const size_t took = fwrite(bytes, 1u, n, l->f);
     if (took != n) {
@@ -41,6 +43,7 @@ static size_t file_write(void *ctx, const uint8_t *bytes, size_t n)
  * in force. */
 static int param_row(void *ctx, uint16_t index, char name[17], int32_t *raw, int32_t *scale)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the sink\'s context is the sil_log_t
     const sil_log_t *l = ctx;
     const ht_param_info_t *row = NULL;
     if ((index >= fw_link_param_count()) ||
@@ -55,6 +58,7 @@ static int param_row(void *ctx, uint16_t index, char name[17], int32_t *raw, int
 static void after_step(void *ctx, const fw_t *fw, const fw_inputs_t *in, const fw_output_t *out,
                        uint64_t us)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the sink\'s context is the sil_log_t
     sil_log_t *l = ctx;
     fw_log_step(&l->log, fw, us, in, out);
 }
@@ -68,6 +72,7 @@ static void say(char *err, size_t err_len, const char *what)
 
 int sil_log_open(void *log, sil_board_t *b, const char *path, char *err, size_t err_len)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the Python caller's handle is the sil_log_t
     sil_log_t *l = log;
     if ((l == NULL) || (b == NULL) || (path == NULL)) {
         say(err, err_len, "sil_log_open: NULL argument");
@@ -99,6 +104,7 @@ int sil_log_open(void *log, sil_board_t *b, const char *path, char *err, size_t 
 
 int32_t sil_log_close(void *log, sil_board_t *b)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the Python caller's handle is the sil_log_t
     sil_log_t *l = log;
     if ((l == NULL) || (l->f == NULL)) {
         return -1;
@@ -118,6 +124,7 @@ int32_t sil_log_close(void *log, sil_board_t *b)
 
 uint32_t sil_log_records(const void *log)
 {
+    // cppcheck-suppress misra-c2012-11.5 ; D-11.5-CTX: the Python caller's handle is the sil_log_t
     const sil_log_t *l = log;
     return (l == NULL) ? 0u : l->log.records;
 }

@@ -154,8 +154,9 @@ static void param_set(fw_link_t *l, const mavlink_message_t *msg)
     if (fw_link_param_set(l, i, raw) != 0) {
         /* the joint rule's own reason (config_check.h, a whole text of at
          * most 49 characters), else the group's */
-        if (l->param_refusal[0] != '\0') {
-            fw_link_text_start(&t, l->param_refusal);
+        const char *why = l->param_refusal;
+        if (*why != '\0') {
+            fw_link_text_start(&t, why);
         } else {
             refused(id, "joint check of its group", &t);
         }

@@ -13,6 +13,9 @@ void fw_link_text_start(fw_link_text_t *t, const char *s)
     fw_link_text_str(t, s);
 }
 
+/* the decimal digits, by value: a digit without arithmetic on characters */
+static const char DIGITS[10] = {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9'};
+
 static void put(fw_link_text_t *t, char c)
 {
     if (t->n < FW_LINK_TEXT_MAX) {
@@ -35,7 +38,7 @@ static void put_u64(fw_link_text_t *t, uint64_t v)
     unsigned k = 0u;
     uint64_t x = v;
     do {
-        d[k] = (char)('0' + (int)(x % 10u));
+        d[k] = DIGITS[x % 10u];
         ++k;
         x /= 10u;
     } while ((x != 0u) && (k < sizeof d));
@@ -91,7 +94,7 @@ void fw_link_text_fixed(fw_link_text_t *t, int32_t raw, int32_t scale)
     }
     put(t, '.');
     for (uint64_t p = pow10 / 10u; p > 0u; p /= 10u) {
-        put(t, (char)('0' + (int)((frac / p) % 10u)));
+        put(t, DIGITS[(frac / p) % 10u]);
     }
 }
 

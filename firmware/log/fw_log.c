@@ -148,10 +148,10 @@ static void edge(fw_log_t *log, uint64_t time_us, uint8_t *last, uint8_t now, ui
 static void queue_events(fw_log_t *log, uint64_t time_us, const fw_inputs_t *in,
                          const fw_output_t *out)
 {
-    uint8_t rec[FW_LOG_REC_MAX];
-    fw_log_rec_t r;
     const uint8_t mode = (in->guided != NULL) ? (uint8_t)FW_LOG_MODE_GUIDED : out->modes.mode;
     if (mode != log->last_mode) {
+        uint8_t rec[FW_LOG_REC_MAX];
+        fw_log_rec_t r;
         fw_log_rec_begin(&r, rec, fw_log_format(FW_LOG_MODE)->type);
         fw_log_put_u64(&r, time_us);
         fw_log_put_u8(&r, mode);

@@ -61,6 +61,7 @@ uint32_t fw_log_f32_from_ratio(int64_t num, uint32_t den)
     }
     /* |num| < 2^62 and den >= 1 keep the exponent well inside the normal
      * range (no subnormal, no infinity) */
-    const uint32_t biased = (uint32_t)(exponent + 127);
+    const int32_t biased_signed = exponent + 127;
+    const uint32_t biased = (uint32_t)biased_signed;
     return sign | (biased << 23u) | (mant & 0x7FFFFFu);
 }

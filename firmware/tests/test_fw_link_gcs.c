@@ -353,8 +353,7 @@ static void test_param_type_is_honoured_or_the_set_refused(void)
         {"LAW_V_MIN", bits_of(NAN), MAV_PARAM_TYPE_REAL32, "LAW_V_MIN refused: not a number|"},
         {"LAW_V_MIN", bits_of(1e30f), MAV_PARAM_TYPE_REAL32,
          "LAW_V_MIN refused: outside [1, 327.67] m/s|"},
-        {"LAW_V_MIN", bits_of(20.0f), MAV_PARAM_TYPE_REAL32,
-         "LAW_V_MIN refused by a joint limit|"},
+        {"LAW_V_MIN", bits_of(20.0f), MAV_PARAM_TYPE_REAL32, "LAW_V_MIN refused by a joint limit|"},
     };
     for (unsigned i = 0u; i < sizeof bad / sizeof bad[0]; ++i) {
         steps(8u); /* the text rate: one per 200 ms */
