@@ -78,8 +78,10 @@ int sil_imu_model_run(sil_imu_model_t *m, const double *in, int32_t n, double t_
             vg[i] = tg[i] + m->vibration_gyro * sin(wt + m->phase_gyro[i]);
             va[i] = ta[i] + m->vibration_accel * sin(wt + m->phase_accel[i]);
         }
-        const int gs = triad_apply(&m->gyro, vg, dt, &normals_gyro[6 * j], &gyro_rad_s[3 * j]);
-        const int as = triad_apply(&m->accel, va, dt, &normals_accel[6 * j], &accel_g[3 * j]);
+        const int64_t at6 = (int64_t)j * 6; /* the sample's 6 normals, its 3 outputs */
+        const int64_t at3 = (int64_t)j * 3;
+        const int gs = triad_apply(&m->gyro, vg, dt, &normals_gyro[at6], &gyro_rad_s[at3]);
+        const int as = triad_apply(&m->accel, va, dt, &normals_accel[at6], &accel_g[at3]);
         if (saturated != NULL) {
             saturated[j] = gs + (2 * as); /* bit 0 gyro, bit 1 accel: each 0 or 1 */
         }
