@@ -176,6 +176,7 @@ typedef struct {
 /* The SIL's servo channels (output stage channels, conventional defaults:
  * centre 1500 us, travel 500 us, end points 1000..2000; throttle idle 1000,
  * travel 1000). */
+// cppcheck-suppress misra-c2012-5.7 ; D-ANON-ENUM: an anonymous enum has no tag to repeat
 enum {
     SIL_CH_AILERON = 0,
     SIL_CH_ELEVATOR = 1,
@@ -210,6 +211,7 @@ size_t sil_command_size(void);
 size_t sil_actuators_size(void);
 
 /* The groups of the parameter table, in sil_config_t's arrays. */
+// cppcheck-suppress misra-c2012-5.7 ; D-ANON-ENUM: an anonymous enum has no tag to repeat
 enum {
     SIL_GROUP_LAW = 0,
     SIL_GROUP_ESTIMATOR = 1,

@@ -47,6 +47,7 @@ typedef struct {
 } sil_imu_model_t;
 
 /* Per sim frame the caller gives these JSBSim values, in this order. */
+// cppcheck-suppress misra-c2012-5.7 ; D-ANON-ENUM: an anonymous enum has no tag to repeat
 enum {
     SIL_IMU_IN_P, /* velocities/p-rad_sec (FRD) */
     SIL_IMU_IN_Q,
@@ -60,6 +61,7 @@ enum {
 
 /* sil_imu_model_run's answers: 0, or why sample `*at` was refused (the
  * model's state is then that of the samples before it). */
+// cppcheck-suppress misra-c2012-5.7 ; D-ANON-ENUM: an anonymous enum has no tag to repeat
 enum {
     SIL_IMU_OK = 0,
     SIL_IMU_BAD_TIME = 1,   /* t not finite, or not one period after the last */

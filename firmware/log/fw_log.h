@@ -54,6 +54,7 @@ typedef struct {
 } fw_log_config_t;
 
 /* Event ids of the EV record. */
+// cppcheck-suppress misra-c2012-5.7 ; D-ANON-ENUM: an anonymous enum has no tag to repeat
 enum {
     FW_LOG_EV_IMU_FAILSAFE_ON = 1,
     FW_LOG_EV_IMU_FAILSAFE_OFF = 2,
