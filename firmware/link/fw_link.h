@@ -18,12 +18,12 @@
  * sender's status and buffers live in fw_link_t.
  *
  * Integer only on every path (MAVLink's float fields are produced and read as
- * IEEE-754 binary32 bit patterns, fw_link_f32.c); no allocation, no globals;
+ * IEEE-754 binary32 bit patterns, src/math/f32_bits.c); no allocation, no globals;
  * not reentrant: call all four functions from one thread, between steps (the
  * link changes the configuration and the controllers of fw_t).
  *
  * The files, from the base up (each uses only the ones above it):
- *   fw_link_params.c, fw_link_f32.c, fw_link_modes.c  the LINK rows, binary32,
+ *   fw_link_params.c, src/math/f32_bits.c, fw_link_modes.c  the LINK rows, binary32,
  *                                                    custom_mode (public)
  *   fw_link_types.h        the state, fw_link_t
  *   fw_link_tx.c           the transmit queue and what the protocols share
@@ -42,7 +42,7 @@
 
 #include "fw_step.h"
 #include "helical/params.h"
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 #include "link/fw_link_modes.h"
 #include "link/fw_link_param_table.h"
 #include "link/fw_link_params.h"

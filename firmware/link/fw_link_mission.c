@@ -18,7 +18,7 @@
 #include "link/fw_link_mission.h"
 
 #include "helical/guidance/config_check.h"
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 #include "link/fw_link_text.h"
 #include "link/fw_link_tx.h"
 
@@ -185,7 +185,7 @@ static uint8_t check_item(uint16_t command, uint8_t frame, int32_t lat_e7, int32
         return (uint8_t)MAV_MISSION_INVALID_PARAM6_Y;
     }
     int32_t z_cm = 0;
-    if ((fw_f32_to_fixed(z_bits, 100, &z_cm) != 0) || (z_cm < -ALT_LIMIT_CM) ||
+    if ((ht_f32_to_fixed(z_bits, 100, &z_cm) != 0) || (z_cm < -ALT_LIMIT_CM) ||
         (z_cm > ALT_LIMIT_CM)) {
         return (uint8_t)MAV_MISSION_INVALID_PARAM7;
     }
@@ -319,10 +319,10 @@ static void on_item_float(fw_link_t *l, const mavlink_message_t *msg)
     int32_t lat_e7 = 0;
     int32_t lon_e7 = 0;
     uint8_t bad = 0u;
-    if (fw_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, x)), 10000000,
+    if (ht_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, x)), 10000000,
                         &lat_e7) != 0) {
         bad = (uint8_t)MAV_MISSION_INVALID_PARAM5_X;
-    } else if (fw_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, y)), 10000000,
+    } else if (ht_f32_to_fixed(fw_link_get_f32(&it, offsetof(mavlink_mission_item_t, y)), 10000000,
                                &lon_e7) != 0) {
         bad = (uint8_t)MAV_MISSION_INVALID_PARAM6_Y;
     } else {
@@ -380,7 +380,7 @@ static void send_item(fw_link_t *l, const mavlink_message_t *msg, uint16_t seq, 
     it.autocontinue = 1u;
     it.x = s->lat_e7;
     it.y = s->lon_e7;
-    fw_link_put_f32(&it, offsetof(mavlink_mission_item_int_t, z), fw_f32_from_ratio(s->z_cm, 100u));
+    fw_link_put_f32(&it, offsetof(mavlink_mission_item_int_t, z), ht_f32_from_ratio(s->z_cm, 100u));
     it.mission_type = type;
     (void)FW_LINK_QUEUE(l, MISSION_ITEM_INT, it);
 }

@@ -11,7 +11,7 @@
  */
 #include "link/fw_link_param_proto.h"
 
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 #include "link/fw_link_param_table.h"
 #include "link/fw_link_text.h"
 #include "link/fw_link_tx.h"
@@ -46,7 +46,7 @@ int fw_link_send_param_value(fw_link_t *l, uint16_t index)
     if ((fw_link_param_get(l, index, &raw, &row) != 0) || (row == NULL)) {
         return -1;
     }
-    return send_value_bits(l, index, fw_f32_from_ratio((int64_t)raw, (uint32_t)row->scale));
+    return send_value_bits(l, index, ht_f32_from_ratio((int64_t)raw, (uint32_t)row->scale));
 }
 
 static int32_t index_of(int16_t index, const char param_id[16])
@@ -92,12 +92,12 @@ static int set_value(const char *id, const ht_param_info_t *row, uint8_t row_typ
         }
         return -1;
     }
-    const int r = fw_f32_to_fixed(bits, row->scale, raw);
+    const int r = ht_f32_to_fixed(bits, row->scale, raw);
     if (r < 0) {
         refused(id, "not a number", t);
         return -1;
     }
-    if ((type != real32) && ((r != 0) || (fw_f32_from_ratio((int64_t)*raw, 1u) != bits)) &&
+    if ((type != real32) && ((r != 0) || (ht_f32_from_ratio((int64_t)*raw, 1u) != bits)) &&
         !((*raw == 0) && (bits == 0x80000000u))) {
         refused(id, "not an integer", t);
         return -1;

@@ -7,7 +7,7 @@
  */
 #include "link/fw_link_telemetry.h"
 
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 #include "link/fw_link_modes.h"
 #include "link/fw_link_tx.h"
 
@@ -17,7 +17,7 @@
 
 static uint32_t f32_cdeg_to_rad(int32_t cdeg)
 {
-    return fw_f32_from_ratio((int64_t)cdeg * RAD_PER_CDEG_Q30, Q30_DEN);
+    return ht_f32_from_ratio((int64_t)cdeg * RAD_PER_CDEG_Q30, Q30_DEN);
 }
 
 static int16_t sat16(int32_t v)
@@ -154,11 +154,11 @@ static void attitude(fw_link_t *l)
     fw_link_put_f32(&a, offsetof(mavlink_attitude_t, pitch), f32_cdeg_to_rad(e->pitch_cdeg));
     fw_link_put_f32(&a, offsetof(mavlink_attitude_t, yaw), f32_cdeg_to_rad(yaw));
     fw_link_put_f32(&a, offsetof(mavlink_attitude_t, rollspeed),
-                    fw_f32_from_ratio(e->gyro_rad_s[0], 65536u));
+                    ht_f32_from_ratio(e->gyro_rad_s[0], 65536u));
     fw_link_put_f32(&a, offsetof(mavlink_attitude_t, pitchspeed),
-                    fw_f32_from_ratio(e->gyro_rad_s[1], 65536u));
+                    ht_f32_from_ratio(e->gyro_rad_s[1], 65536u));
     fw_link_put_f32(&a, offsetof(mavlink_attitude_t, yawspeed),
-                    fw_f32_from_ratio(e->gyro_rad_s[2], 65536u));
+                    ht_f32_from_ratio(e->gyro_rad_s[2], 65536u));
     (void)FW_LINK_QUEUE(l, ATTITUDE, a);
 }
 
@@ -216,11 +216,11 @@ static void vfr_hud(fw_link_t *l)
     const uint64_t ae = (ve < 0) ? (0U - (uint64_t)ve) : (uint64_t)ve;
     const uint32_t ground_cm_s = isqrt64((an * an) + (ae * ae));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, airspeed),
-                    fw_f32_from_ratio(n->airspeed_cm_s, 100u));
+                    ht_f32_from_ratio(n->airspeed_cm_s, 100u));
     fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, groundspeed),
-                    fw_f32_from_ratio((int64_t)ground_cm_s, 100u));
-    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, alt), fw_f32_from_ratio(n->altitude_cm, 100u));
-    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, climb), fw_f32_from_ratio(n->climb_cm_s, 100u));
+                    ht_f32_from_ratio((int64_t)ground_cm_s, 100u));
+    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, alt), ht_f32_from_ratio(n->altitude_cm, 100u));
+    fw_link_put_f32(&v, offsetof(mavlink_vfr_hud_t, climb), ht_f32_from_ratio(n->climb_cm_s, 100u));
     const uint16_t heading_deg = (uint16_t)(l->last.est.yaw_cdeg / 100u); /* [0, 359] */
     v.heading = (int16_t)heading_deg;
     const int32_t thr = (int32_t)l->last.throttle;
@@ -300,9 +300,9 @@ static void debug_vect(fw_link_t *l, const char *name, int32_t x, int32_t y, int
     (void)memset(&d, 0, sizeof d);
     (void)memcpy(d.name, name, strlen(name)); /* < 10 characters */
     d.time_usec = (uint64_t)l->now_ms * 1000u;
-    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, x), fw_f32_from_ratio(x, den));
-    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, y), fw_f32_from_ratio(y, den));
-    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, z), fw_f32_from_ratio(z, den));
+    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, x), ht_f32_from_ratio(x, den));
+    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, y), ht_f32_from_ratio(y, den));
+    fw_link_put_f32(&d, offsetof(mavlink_debug_vect_t, z), ht_f32_from_ratio(z, den));
     (void)FW_LINK_QUEUE(l, DEBUG_VECT, d);
 }
 

@@ -4,7 +4,7 @@
  */
 #include "log/fw_log.h"
 
-#include "log/log_f32.h"
+#include "helical/math/f32_bits.h"
 
 /* Whole records or nothing: a torn record would desynchronise a reader
  * until its next header. */
@@ -118,7 +118,7 @@ static void queue_header(fw_log_t *log, uint64_t time_us)
         fw_log_rec_begin(&r, rec, pf->type);
         fw_log_put_u64(&r, time_us);
         fw_log_put_text(&r, name, 16u);
-        fw_log_put_u32(&r, fw_log_f32_from_ratio(raw, (scale > 0) ? (uint32_t)scale : 1u));
+        fw_log_put_u32(&r, ht_f32_from_ratio(raw, (scale > 0) ? (uint32_t)scale : 1u));
         (void)ring_put(log, rec, r.n);
         ++log->parm_next;
     }

@@ -3,7 +3,7 @@
 # MAVLink link (firmware/link/fw_link*.c) and the step it rides on, compiled for a
 # Cortex-M0 with soft float (-Os, as an image is), reference no soft-float
 # routine: MAVLink's float fields are bit patterns made with integers
-# (fw_link_f32.c). tools/image/check_no_float.sh does the inspection.
+# (src/math/f32_bits.c). tools/image/check_no_float.sh does the inspection.
 set -eu
 gcc="$1"
 nm="$2"

@@ -51,13 +51,13 @@ static void test_ratio_exhaustive_16_bit_formats(void)
     uint32_t bad = 0u;
     for (unsigned d = 0u; d < sizeof dens / sizeof dens[0]; ++d) {
         for (int32_t raw = INT16_MIN; raw <= INT16_MAX; ++raw) {
-            if (fw_f32_from_ratio(raw, dens[d]) != host_ratio(raw, dens[d])) {
+            if (ht_f32_from_ratio(raw, dens[d]) != host_ratio(raw, dens[d])) {
                 ++bad;
             }
         }
     }
     TEST_ASSERT_EQUAL_UINT32(0u, bad);
-    TEST_ASSERT_EQUAL_HEX32(0u, fw_f32_from_ratio(0, 100u)); /* +0 */
+    TEST_ASSERT_EQUAL_HEX32(0u, ht_f32_from_ratio(0, 100u)); /* +0 */
 }
 
 static void test_ratio_random_int32_and_wide_numerators(void)
@@ -73,7 +73,7 @@ static void test_ratio_random_int32_and_wide_numerators(void)
         if ((r & 1u) != 0u) {
             num = -num;
         }
-        if (fw_f32_from_ratio(num, den) != host_ratio(num, den)) {
+        if (ht_f32_from_ratio(num, den) != host_ratio(num, den)) {
             ++bad;
         }
     }
@@ -83,15 +83,15 @@ static void test_ratio_random_int32_and_wide_numerators(void)
 static void test_ratio_ties_round_to_even(void)
 {
     /* 2^24 + 1 and 2^24 + 3 are ties between two floats */
-    TEST_ASSERT_EQUAL_HEX32(bits_of(16777216.0f), fw_f32_from_ratio(16777217, 1u));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(16777220.0f), fw_f32_from_ratio(16777219, 1u));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(-16777216.0f), fw_f32_from_ratio(-16777217, 1u));
+    TEST_ASSERT_EQUAL_HEX32(bits_of(16777216.0f), ht_f32_from_ratio(16777217, 1u));
+    TEST_ASSERT_EQUAL_HEX32(bits_of(16777220.0f), ht_f32_from_ratio(16777219, 1u));
+    TEST_ASSERT_EQUAL_HEX32(bits_of(-16777216.0f), ht_f32_from_ratio(-16777217, 1u));
     /* just above a tie rounds up */
-    TEST_ASSERT_EQUAL_HEX32(bits_of(16777218.0f), fw_f32_from_ratio(2 * 16777217 + 1, 2u));
+    TEST_ASSERT_EQUAL_HEX32(bits_of(16777218.0f), ht_f32_from_ratio(2 * 16777217 + 1, 2u));
     /* carry into the exponent: 2^25 - 1 -> 2^25 */
-    TEST_ASSERT_EQUAL_HEX32(bits_of(33554432.0f), fw_f32_from_ratio(33554431, 1u));
-    TEST_ASSERT_EQUAL_HEX32(host_ratio(INT32_MIN, 1u), fw_f32_from_ratio(INT32_MIN, 1u));
-    TEST_ASSERT_EQUAL_HEX32(host_ratio(INT32_MAX, 65536u), fw_f32_from_ratio(INT32_MAX, 65536u));
+    TEST_ASSERT_EQUAL_HEX32(bits_of(33554432.0f), ht_f32_from_ratio(33554431, 1u));
+    TEST_ASSERT_EQUAL_HEX32(host_ratio(INT32_MIN, 1u), ht_f32_from_ratio(INT32_MIN, 1u));
+    TEST_ASSERT_EQUAL_HEX32(host_ratio(INT32_MAX, 65536u), ht_f32_from_ratio(INT32_MAX, 65536u));
 }
 
 /* the reference: value * scale, rounded half away from zero, saturated */
@@ -119,7 +119,7 @@ static void check_to_fixed(uint32_t b, int32_t scale, uint32_t *bad)
 {
     int32_t a = 12345;
     int32_t h = 12345;
-    const int sa = fw_f32_to_fixed(b, scale, &a);
+    const int sa = ht_f32_to_fixed(b, scale, &a);
     const int sh = host_to_fixed(b, scale, &h);
     if ((sa != sh) || (a != h)) {
         ++*bad;
@@ -143,33 +143,33 @@ static void test_to_fixed_every_exponent_and_random_mantissas(void)
 static void test_to_fixed_edges(void)
 {
     int32_t v = 7;
-    TEST_ASSERT_EQUAL_INT(-1, fw_f32_to_fixed(bits_of(NAN), 100, &v));
-    TEST_ASSERT_EQUAL_INT(-1, fw_f32_to_fixed(bits_of(INFINITY), 100, &v));
-    TEST_ASSERT_EQUAL_INT(-1, fw_f32_to_fixed(bits_of(-INFINITY), 100, &v));
+    TEST_ASSERT_EQUAL_INT(-1, ht_f32_to_fixed(bits_of(NAN), 100, &v));
+    TEST_ASSERT_EQUAL_INT(-1, ht_f32_to_fixed(bits_of(INFINITY), 100, &v));
+    TEST_ASSERT_EQUAL_INT(-1, ht_f32_to_fixed(bits_of(-INFINITY), 100, &v));
     TEST_ASSERT_EQUAL_INT32(7, v); /* untouched */
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(bits_of(-0.0f), 100, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(bits_of(-0.0f), 100, &v));
     TEST_ASSERT_EQUAL_INT32(0, v);
     /* ties: half away from zero */
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(bits_of(0.5f), 1, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(bits_of(0.5f), 1, &v));
     TEST_ASSERT_EQUAL_INT32(1, v);
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(bits_of(-2.5f), 1, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(bits_of(-2.5f), 1, &v));
     TEST_ASSERT_EQUAL_INT32(-3, v);
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(bits_of(0.49999997f), 1, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(bits_of(0.49999997f), 1, &v));
     TEST_ASSERT_EQUAL_INT32(0, v);
     /* saturation at the int32 ends, exactly */
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(bits_of(-2147483648.0f), 1, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(bits_of(-2147483648.0f), 1, &v));
     TEST_ASSERT_EQUAL_INT32(INT32_MIN, v);
-    TEST_ASSERT_EQUAL_INT(1, fw_f32_to_fixed(bits_of(2147483648.0f), 1, &v));
+    TEST_ASSERT_EQUAL_INT(1, ht_f32_to_fixed(bits_of(2147483648.0f), 1, &v));
     TEST_ASSERT_EQUAL_INT32(INT32_MAX, v);
-    TEST_ASSERT_EQUAL_INT(1, fw_f32_to_fixed(bits_of(-3e38f), 65536, &v));
+    TEST_ASSERT_EQUAL_INT(1, ht_f32_to_fixed(bits_of(-3e38f), 65536, &v));
     TEST_ASSERT_EQUAL_INT32(INT32_MIN, v);
-    TEST_ASSERT_EQUAL_INT(1, fw_f32_to_fixed(bits_of(40000.0f), 65536, &v));
+    TEST_ASSERT_EQUAL_INT(1, ht_f32_to_fixed(bits_of(40000.0f), 65536, &v));
     TEST_ASSERT_EQUAL_INT32(INT32_MAX, v);
     /* the smallest subnormal is 0 */
-    TEST_ASSERT_EQUAL_INT(0, fw_f32_to_fixed(1u, 65536, &v));
+    TEST_ASSERT_EQUAL_INT(0, ht_f32_to_fixed(1u, 65536, &v));
     TEST_ASSERT_EQUAL_INT32(0, v);
     /* a bad scale is refused */
-    TEST_ASSERT_EQUAL_INT(-1, fw_f32_to_fixed(bits_of(1.0f), 0, &v));
+    TEST_ASSERT_EQUAL_INT(-1, ht_f32_to_fixed(bits_of(1.0f), 0, &v));
 }
 
 static void test_round_trip_every_16_bit_raw(void)
@@ -179,7 +179,7 @@ static void test_round_trip_every_16_bit_raw(void)
     for (unsigned s = 0u; s < 5u; ++s) {
         for (int32_t raw = INT16_MIN; raw <= INT16_MAX; ++raw) {
             int32_t back = 0;
-            if ((fw_f32_to_fixed(fw_f32_from_ratio(raw, (uint32_t)scales[s]), scales[s], &back) !=
+            if ((ht_f32_to_fixed(ht_f32_from_ratio(raw, (uint32_t)scales[s]), scales[s], &back) !=
                  0) ||
                 (back != raw)) {
                 ++bad;

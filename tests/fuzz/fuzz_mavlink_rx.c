@@ -139,7 +139,7 @@ static void sent(const mavlink_message_t *m)
         uint32_t bits;
         memcpy(&bits, &pv.param_value, sizeof bits);
         int32_t echoed = 0;
-        check(fw_f32_to_fixed(bits, row->scale, &echoed) == 0 && echoed == raw);
+        check(ht_f32_to_fixed(bits, row->scale, &echoed) == 0 && echoed == raw);
     } else {
         /* telemetry */
     }

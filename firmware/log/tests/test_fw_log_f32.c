@@ -10,7 +10,7 @@
  */
 #include "unity.h"
 
-#include "log/log_f32.h"
+#include "helical/math/f32_bits.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -41,7 +41,7 @@ static uint32_t next_u32(void)
 static void check(int64_t num, uint32_t den)
 {
     const uint32_t want = host_ratio(num, den);
-    const uint32_t got = fw_log_f32_from_ratio(num, den);
+    const uint32_t got = ht_f32_from_ratio(num, den);
     if (want != got) {
         char msg[96];
         (void)snprintf(msg, sizeof msg, "%lld / %u", (long long)num, den);
@@ -77,13 +77,13 @@ static void test_edges(void)
         }
     }
     /* the ties of the 24-bit mantissa go to even: 2^24 + 1 -> 2^24, + 3 -> + 4 */
-    TEST_ASSERT_EQUAL_HEX32(0x4B800000u, fw_log_f32_from_ratio(16777217, 1u));
-    TEST_ASSERT_EQUAL_HEX32(0x4B800002u, fw_log_f32_from_ratio(16777219, 1u));
+    TEST_ASSERT_EQUAL_HEX32(0x4B800000u, ht_f32_from_ratio(16777217, 1u));
+    TEST_ASSERT_EQUAL_HEX32(0x4B800002u, ht_f32_from_ratio(16777219, 1u));
     /* zero and a zero denominator are +0, never a NaN */
-    TEST_ASSERT_EQUAL_HEX32(0u, fw_log_f32_from_ratio(0, 100u));
-    TEST_ASSERT_EQUAL_HEX32(0u, fw_log_f32_from_ratio(5, 0u));
+    TEST_ASSERT_EQUAL_HEX32(0u, ht_f32_from_ratio(0, 100u));
+    TEST_ASSERT_EQUAL_HEX32(0u, ht_f32_from_ratio(5, 0u));
     /* 0.1 m/s as cm: 10 / 100 is the float nearest 0.1 */
-    TEST_ASSERT_EQUAL_HEX32(0x3DCCCCCDu, fw_log_f32_from_ratio(10, 100u));
+    TEST_ASSERT_EQUAL_HEX32(0x3DCCCCCDu, ht_f32_from_ratio(10, 100u));
 }
 
 int main(void)

@@ -1,5 +1,5 @@
 /*
- * fw_link_f32.c - IEEE-754 binary32 bit patterns from and to the library's
+ * f32_bits.c - IEEE-754 binary32 bit patterns from and to the library's
  * fixed-point values, in integers: MAVLink carries attitudes, speeds and
  * parameter values as float, the per-step path has no float (the
  * soft-float runtime must not reach the image: tools/image/check_no_float.sh).
@@ -11,7 +11,7 @@
  * to nearest, ties away from zero (as the parameter table's defaults do),
  * and saturates.
  */
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 
 #include <stddef.h>
 
@@ -27,7 +27,7 @@ static int bit_length64(uint64_t x)
     return n;
 }
 
-uint32_t fw_f32_from_ratio(int64_t num, uint32_t den)
+uint32_t ht_f32_from_ratio(int64_t num, uint32_t den)
 {
     if ((num == 0) || (den == 0u)) {
         return 0u;
@@ -71,7 +71,7 @@ uint32_t fw_f32_from_ratio(int64_t num, uint32_t den)
     return sign | (biased << 23u) | (mant & 0x7FFFFFu);
 }
 
-int fw_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
+int ht_f32_to_fixed(uint32_t f, int32_t scale, int32_t *out)
 {
     const uint32_t exp_field = (f >> 23u) & 0xFFu;
     const uint32_t frac = f & 0x7FFFFFu;
