@@ -22,7 +22,7 @@
  */
 #include "link/fw_link_command.h"
 
-#include "link/fw_link_f32.h"
+#include "helical/math/f32_bits.h"
 #include "link/fw_link_modes.h"
 #include "link/fw_link_telemetry.h"
 #include "link/fw_link_text.h"
@@ -68,11 +68,11 @@ static int param_exact(const command_t *c, unsigned k, int32_t *v)
 {
     const uint32_t bits = c->param_bits[k - 1u];
     int32_t r = 0;
-    if (fw_f32_to_fixed(bits, 1, &r) != 0) {
+    if (ht_f32_to_fixed(bits, 1, &r) != 0) {
         return -1; /* NaN, infinity or saturated */
     }
     /* exact when the integer converts back to the same number (-0 is 0) */
-    if ((fw_f32_from_ratio((int64_t)r, 1u) != bits) && !((r == 0) && (bits == 0x80000000u))) {
+    if ((ht_f32_from_ratio((int64_t)r, 1u) != bits) && !((r == 0) && (bits == 0x80000000u))) {
         return -1;
     }
     *v = r;
@@ -272,6 +272,15 @@ static void command(fw_link_t *l, const mavlink_message_t *msg, const command_t 
     command_ack(l, msg, c->command, result);
 }
 
+/* param1..param4: four consecutive binary32 fields (4 bytes each) at the
+ * start of COMMAND_LONG and of COMMAND_INT */
+static void four_params(const void *payload, size_t param1, uint32_t bits[4])
+{
+    for (size_t i = 0u; i < 4u; ++i) {
+        bits[i] = fw_link_get_f32(payload, param1 + (4u * i));
+    }
+}
+
 void fw_link_command_rx(fw_link_t *l, const mavlink_message_t *msg)
 {
     command_t c;
@@ -280,19 +289,13 @@ void fw_link_command_rx(fw_link_t *l, const mavlink_message_t *msg)
         mavlink_command_long_t cl;
         mavlink_msg_command_long_decode(msg, &cl);
         c.command = cl.command;
-        c.param_bits[0] = fw_link_get_f32(&cl, offsetof(mavlink_command_long_t, param1));
-        c.param_bits[1] = fw_link_get_f32(&cl, offsetof(mavlink_command_long_t, param2));
-        c.param_bits[2] = fw_link_get_f32(&cl, offsetof(mavlink_command_long_t, param3));
-        c.param_bits[3] = fw_link_get_f32(&cl, offsetof(mavlink_command_long_t, param4));
+        four_params(&cl, offsetof(mavlink_command_long_t, param1), c.param_bits);
         command(l, msg, &c);
     } else if (msg->msgid == (uint32_t)MAVLINK_MSG_ID_COMMAND_INT) {
         mavlink_command_int_t ci;
         mavlink_msg_command_int_decode(msg, &ci);
         c.command = ci.command;
-        c.param_bits[0] = fw_link_get_f32(&ci, offsetof(mavlink_command_int_t, param1));
-        c.param_bits[1] = fw_link_get_f32(&ci, offsetof(mavlink_command_int_t, param2));
-        c.param_bits[2] = fw_link_get_f32(&ci, offsetof(mavlink_command_int_t, param3));
-        c.param_bits[3] = fw_link_get_f32(&ci, offsetof(mavlink_command_int_t, param4));
+        four_params(&ci, offsetof(mavlink_command_int_t, param1), c.param_bits);
         command(l, msg, &c);
     } else if (msg->msgid == (uint32_t)MAVLINK_MSG_ID_SET_MODE) {
         mavlink_set_mode_t sm;
