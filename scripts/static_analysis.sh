@@ -17,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 board_dirs="boards/common boards/stm32f4 boards/dspic33 boards/sil"
-SA_SOURCES=${SA_SOURCES:-"$(echo src/*.c src/*/*.c $(find firmware -name "*.c" -not -path "*/tests/*" | sort) boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
+SA_SOURCES=${SA_SOURCES:-"$(echo src/*/*.c $(find firmware -name "*.c" -not -path "*/tests/*" | sort) boards/common/*.c boards/stm32f4/*.c boards/sil/*.c \
     boards/dspic33/dspic33_oc_pwm.c boards/devices/*.c)"}
 SA_XC16_SOURCES=${SA_XC16_SOURCES-boards/dspic33/board_udb.c}
 SA_XC16_DEFINES=${SA_XC16_DEFINES:-"-D__XC16__ -DHT_DSPIC_FCY_HZ=40000000"}

@@ -269,12 +269,12 @@ class LibBuild:
 
 
 def lib_sources() -> list[Path]:
-    """Every library source: the parameter rows at src/ and each concern's folder."""
-    return sorted([*(ROOT / "src").glob("*.c"), *(ROOT / "src").glob("*/*.c")])
+    """Every library source: each concern's folder of src/."""
+    return sorted((ROOT / "src").glob("*/*.c"))
 
 
 def build_library(cc: str, flags: list[str], outdir: Path) -> LibBuild:
-    """Compile every src/*.c that builds; the core must, the rest may not."""
+    """Compile every src/*/*.c that builds; the core must, the rest may not."""
     outdir.mkdir(parents=True, exist_ok=True)
     objs: list[Path] = []
     core: list[Path] = []

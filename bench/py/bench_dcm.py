@@ -63,7 +63,7 @@ CPI = {"M0": 1.3, "M4": 1.0}
 # the estimator's sources (src/): the ARM build checks they compiled, the
 # host build compiles them
 DCM_SOURCES = ("estimator/dcm.c", "estimator/dcm_gps_accel.c", "estimator/dcm_wind.c",
-               "estimator/dcm_params.c", "estimator/dcm_trig.c", "math/q14.c", "param_rows.c")
+               "estimator/dcm_params.c", "estimator/dcm_trig.c", "math/q14.c", "params/param_rows.c")
 
 
 def build(core: B.Core, opt: str, outroot: Path) -> Path:

@@ -5,6 +5,7 @@
  * rate reaches is simply reached at the control rate: docs/mavlink.md).
  */
 #include "link/fw_link_params.h"
+#include "helical/params/param_rows.h"
 
 #include <stddef.h>
 

@@ -160,11 +160,6 @@ typedef struct {
     uint8_t bytes; /* HT_PFMT_BYTES_* */
 } ht_param_info_t;
 
-/* Row id (1 .. count) of a group's table (ids start at 1, after *_NONE), or
- * NULL for any other id or a NULL table. */
-const ht_param_info_t *ht_param_row(const ht_param_info_t *table, int count, int id);
-
-/* A row's name; "" for NULL. */
-const char *ht_param_row_name(const ht_param_info_t *row);
+/* A row by its id and its name: helical/params/param_rows.h. */
 
 #endif /* HELICAL_PARAMS_H */

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "helical/estimator/dcm.h"
+#include "helical/params/param_rows.h"
 
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t dcm_param_info[HT_PARAM_DCM_COUNT] = {HT_PARAMS_DCM(HT_PARAM_X_INFO)};

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "helical/guidance/guide.h"
+#include "helical/params/param_rows.h"
 
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t rows[HT_PARAM_GUIDE_COUNT] = {HT_PARAMS_GUIDE(HT_PARAM_X_INFO)};

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "helical/guidance/hold_params.h"
+#include "helical/params/param_rows.h"
 
 #define HOLD_RATE_MAX_HZ 1000u
 

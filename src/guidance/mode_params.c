@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "helical/guidance/mode_params.h"
+#include "helical/params/param_rows.h"
 
 // cppcheck-suppress misra-c2012-10.8 ; D-10.8-FROM-REAL: the table's bounds, folded constants
 static const ht_param_info_t modes_rows[HT_PARAM_MODES_COUNT] = {HT_PARAMS_MODES(HT_PARAM_X_INFO)};

@@ -4,6 +4,7 @@
  * mutable state.
  */
 #include "helical/guidance/modes.h"
+#include "helical/params/param_rows.h"
 
 #include <stddef.h>
 

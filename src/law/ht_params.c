@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "helical/law/helical_turn.h"
+#include "helical/params/param_rows.h"
 
 /* The per-field ranges are the table's (include/helical/params.def); the
  * joint limits are checked here. Why they are what they are:

@@ -1,11 +1,11 @@
 /*
  * param_rows.c - a row of one group of the parameter table by its id, and
  * its name: what ht_param_info / ht_dcm_param_info / ht_guide_param_info and
- * their _name twins share (include/helical/params.h).
+ * their _name twins share (include/helical/params/param_rows.h).
  */
 #include <stddef.h>
 
-#include "helical/params.h"
+#include "helical/params/param_rows.h"
 
 const ht_param_info_t *ht_param_row(const ht_param_info_t *table, int count, int id)
 {
